@@ -1,0 +1,42 @@
+#pragma once
+// Stage 1: demodulate. Divides the albedo out of the noisy color so that the filters smooth
+// illumination only and texture detail survives (paper Sec. 4). Also the gate that keeps bad
+// samples out of the history: see sanitize_radiance.
+#include "core/hd.h"
+#include "core/params.h"
+#include "core/views.h"
+
+namespace svgf {
+
+// The bad-sample rule: a color component that is NaN, +-Inf or negative is replaced by 0
+// (no light), and the pixel is counted. Radiance is never negative, and 0 is the one value that
+// cannot brighten or darken the history beyond what a dark sample would.
+SVGF_HD float sanitize_radiance(float v, bool& replaced) {
+  const bool ok = v >= 0.f && is_finite(v);
+  replaced = replaced || !ok;
+  return ok ? v : 0.f;
+}
+
+// Albedo clamped from below (NaN albedo clamps too, since max_f drops NaN).
+SVGF_HD Vec3 guarded_albedo(Vec3 albedo, float epsilon) { return max_v(albedo, epsilon); }
+
+struct DemodulateKernel {
+  int width = 0;
+  ConstRgbView color;
+  ConstRgbView albedo;
+  RgbView illumination;
+  float albedo_epsilon = 1e-3f;
+
+  // Returns true where a color sample was replaced (the drivers count these).
+  SVGF_HD bool operator()(int x, int y) const {
+    const int i = y * width + x;
+    bool replaced = false;
+    const Vec3 c = make_vec3(sanitize_radiance(color.r[i], replaced),
+                             sanitize_radiance(color.g[i], replaced),
+                             sanitize_radiance(color.b[i], replaced));
+    illumination.store(i, c / guarded_albedo(albedo.load(i), albedo_epsilon));
+    return replaced;
+  }
+};
+
+}  // namespace svgf

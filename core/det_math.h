@@ -1,0 +1,140 @@
+#pragma once
+// Deterministic transcendental functions built only from IEEE + - * / , floor and integer bit
+// manipulation. The CUDA math library's expf/powf and glibc's differ in their last bits, so the
+// exact mode cannot use either: these give the same bits on every compiler and device as long
+// as contraction (FMA) is off and subnormals are kept. Accuracy, tested in tests/det_math_test:
+//   det_exp  (float)         : within 2 ulp of the correctly rounded exp over all floats
+//   det_pow  (float, float)  : within 1 ulp of the correctly rounded pow (computed in double)
+#include <cstdint>
+#include <cstring>
+#include <cmath>
+
+#include "core/hd.h"
+#include "core/vec.h"
+
+namespace svgf {
+
+SVGF_HD uint32_t float_bits(float f) { uint32_t u; memcpy(&u, &f, sizeof u); return u; }
+SVGF_HD float bits_float(uint32_t u) { float f; memcpy(&f, &u, sizeof f); return f; }
+SVGF_HD uint64_t double_bits(double d) { uint64_t u; memcpy(&u, &d, sizeof u); return u; }
+SVGF_HD double bits_double(uint64_t u) { double d; memcpy(&d, &u, sizeof d); return d; }
+
+// exp(x) in float. Cody-Waite reduction x = k ln2 + r with |r| <= ln2/2 (ln2 split so k*ln2_hi
+// is exact for |k| <= 255), the Cephes expf minimax polynomial for e^r, then 2^k applied as two
+// exact power-of-two factors so that a subnormal result is rounded only once. Branch-free but
+// for the NaN pass-through, so the CPU loops can vectorize it.
+SVGF_HD float det_exp(float x) {
+  const float xc = min_f(max_f(x, -104.f), 89.f);  // below: 0, above: +Inf; NaN lands on -104
+  const float k = floorf(xc * 1.44269504088896341f + 0.5f);
+  const float r = (xc - k * 0.693145751953125f) - k * 1.428606765330187e-06f;
+  const float r2 = r * r;
+  float p = 1.9875691500e-4f;
+  p = p * r + 1.3981999507e-3f;
+  p = p * r + 8.3334519073e-3f;
+  p = p * r + 4.1665795894e-2f;
+  p = p * r + 1.6666665459e-1f;
+  p = p * r + 5.0000001201e-1f;
+  const float y = (p * r2 + r) + 1.f;
+  const int ki = static_cast<int>(k);
+  const int k1 = ki / 2;  // both halves lie in [-75, 64]: 2^k1 and 2^k2 are normal floats
+  const int k2 = ki - k1;
+  const float s1 = bits_float(static_cast<uint32_t>(k1 + 127) << 23);
+  const float s2 = bits_float(static_cast<uint32_t>(k2 + 127) << 23);
+  const float out = (y * s1) * s2;  // y*s1 is exact; the only rounding is the last product
+  return x == x ? out : x;
+}
+
+// exp(x) in double, same scheme with a degree-13 Taylor polynomial (error < 1e-16 on |r|<=ln2/2).
+// Used only inside det_pow, where a float result needs a few more bits than float carries.
+SVGF_HD double det_exp_d(double x) {
+  if (!(x == x)) return x;
+  const double xc = x < -746.0 ? -746.0 : (x > 710.0 ? 710.0 : x);
+  const double k = floor(xc * 1.4426950408889634 + 0.5);
+  const double r = (xc - k * 6.93147180369123816490e-01) - k * 1.90821492927058770002e-10;
+  double p = 1.6059043836821613e-10;
+  p = p * r + 2.08767569878681e-09;
+  p = p * r + 2.505210838544172e-08;
+  p = p * r + 2.755731922398589e-07;
+  p = p * r + 2.7557319223985893e-06;
+  p = p * r + 2.48015873015873e-05;
+  p = p * r + 0.0001984126984126984;
+  p = p * r + 0.001388888888888889;
+  p = p * r + 0.008333333333333333;
+  p = p * r + 0.041666666666666664;
+  p = p * r + 0.16666666666666666;
+  p = p * r + 0.5;
+  p = p * r + 1.0;
+  p = p * r + 1.0;
+  const int ki = static_cast<int>(k);
+  const int k1 = ki / 2;
+  const int k2 = ki - k1;
+  const double s1 = bits_double(static_cast<uint64_t>(k1 + 1023) << 52);
+  const double s2 = bits_double(static_cast<uint64_t>(k2 + 1023) << 52);
+  return (p * s1) * s2;
+}
+
+// log(x) in double for finite x > 0: x = m 2^e with m in [sqrt(1/2), sqrt(2)), then
+// log m = 2 atanh(s), s = (m-1)/(m+1), |s| <= 0.1716, summed to s^23.
+SVGF_HD double det_log_d(double x) {
+  uint64_t b = double_bits(x);
+  int e = 0;
+  if (((b >> 52) & 0x7ff) == 0) {  // subnormal: scale into the normal range first
+    x = x * 18014398509481984.0;  // 2^54
+    b = double_bits(x);
+    e = -54;
+  }
+  e += static_cast<int>((b >> 52) & 0x7ff) - 1023;
+  double m = bits_double((b & 0x000fffffffffffffULL) | 0x3ff0000000000000ULL);
+  if (m > 1.4142135623730951) {
+    m = m * 0.5;
+    e += 1;
+  }
+  const double s = (m - 1.0) / (m + 1.0);
+  const double s2 = s * s;
+  double p = 0.043478260869565216;  // 1/23
+  p = p * s2 + 0.047619047619047616;
+  p = p * s2 + 0.05263157894736842;
+  p = p * s2 + 0.058823529411764705;
+  p = p * s2 + 0.06666666666666667;
+  p = p * s2 + 0.07692307692307693;
+  p = p * s2 + 0.09090909090909091;
+  p = p * s2 + 0.1111111111111111;
+  p = p * s2 + 0.14285714285714285;
+  p = p * s2 + 0.2;
+  p = p * s2 + 0.3333333333333333;
+  p = p * s2 + 1.0;
+  const double ed = static_cast<double>(e);
+  return ed * 6.93147180369123816490e-01 + (ed * 1.90821492927058770002e-10 + 2.0 * s * p);
+}
+
+// pow(x, y) in float. An integer exponent (the normal weight's 128, say) is exponentiation by
+// repeated squaring in double; any other goes through exp(y log x) in double. Both leave at
+// most one float rounding that matters, hence the 1-ulp bound.
+SVGF_HD float det_pow(float x, float y) {
+  if (y == 0.f || x == 1.f) return 1.f;
+  if (!(x == x) || !(y == y)) return x + y;
+  const bool y_integer = floorf(y) == y;
+  if (y_integer && abs_f(y) <= 16777216.f) {
+    uint32_t n = static_cast<uint32_t>(abs_f(y));
+    double base = static_cast<double>(x);
+    double r = 1.0;
+    while (n != 0u) {
+      if (n & 1u) r = r * base;
+      n >>= 1;
+      if (n != 0u) base = base * base;
+    }
+    if (y < 0.f) r = 1.0 / r;
+    return static_cast<float>(r);
+  }
+  float ax = x;
+  if (x < 0.f) {
+    if (!y_integer) return bits_float(0x7fc00000u);  // NaN: negative base, fractional power
+    ax = -x;  // |y| > 2^24 is an even integer
+  }
+  const float inf = bits_float(0x7f800000u);
+  if (ax == 0.f) return y > 0.f ? 0.f : inf;
+  if (ax == inf) return y > 0.f ? inf : 0.f;
+  return static_cast<float>(det_exp_d(static_cast<double>(y) * det_log_d(static_cast<double>(ax))));
+}
+
+}  // namespace svgf

@@ -1,0 +1,51 @@
+#pragma once
+// Every tunable of the SVGF pipeline, with its default, in one place. Defaults follow NVIDIA
+// Falcor's SVGFPass (which follows Schied et al. 2017); docs/svgf.md lists where each comes from.
+#include "core/hd.h"
+
+namespace svgf {
+
+struct SvgfParams {
+  // Demodulation: albedo below this is clamped, so black albedo does not divide by zero.
+  float albedo_epsilon = 1e-3f;
+
+  // Temporal accumulation (paper Sec. 4.1): exponential moving average with factor
+  // max(alpha, 1/history) so the first frames are a plain mean.
+  float alpha = 0.05f;
+  float moments_alpha = 0.2f;
+  int history_cap = 32;
+
+  // Reprojection tap tests. A tap is kept when its mesh id matches, its world normals agree to
+  // within reproject_normal_cos, and |z - z_prev| <= scale * fwidth(z) + relative * z.
+  float reproject_depth_gradient_scale = 10.f;
+  float reproject_depth_relative = 0.03f;
+  float reproject_normal_cos = 0.9f;
+  // Bilinear taps whose kept weights sum below this count as no reprojection (Falcor: 0.01).
+  float reproject_min_weight = 0.01f;
+
+  // Variance (paper Sec. 4.2): a 7x7 bilateral spatial estimate while history < this.
+  int spatial_variance_history = 4;
+  int spatial_variance_radius = 3;
+  float spatial_variance_phi_depth = 3.f;  // depth tolerance of the spatial estimate (Falcor)
+
+  // Edge-stopping functions of the a-trous filter (paper Eq. 3-4).
+  int iterations = 4;     // Falcor: 4; the paper uses 5
+  int feedback_tap = 1;   // iteration whose output is the next frame's color history; -1: none
+                          // (the unfiltered accumulation is fed back)
+  float phi_color = 10.f;
+  float phi_normal = 128.f;
+  float phi_depth = 1.f;
+  float variance_epsilon = 1e-4f;  // added under the square root of the luminance sigma
+  float depth_gradient_floor = 1e-8f;
+};
+
+// Fixed numbers of the method, not tunables. Functions rather than constexpr arrays, because a
+// namespace-scope array cannot be indexed from device code.
+
+// B3-spline a-trous kernel (1/16, 1/4, 3/8, 1/4, 1/16) at offset |d| in 0..2; the 2-D weight is
+// b3(|dx|) * b3(|dy|). Exact binary fractions: every weight and product is exact.
+SVGF_HD float b3_weight(int d) { return d == 0 ? 0.375f : (d == 1 ? 0.25f : 0.0625f); }
+// 3x3 Gaussian (1/4, 1/2, 1/4) of the variance prefilter (paper Eq. 5), at offset |d| in 0..1.
+SVGF_HD float gauss3_weight(int d) { return d == 0 ? 0.5f : 0.25f; }
+
+}  // namespace svgf

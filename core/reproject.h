@@ -1,0 +1,131 @@
+#pragma once
+// Stage 2: reproject and accumulate (paper Sec. 4.1, Falcor's SVGFReproject).
+// Each pixel follows its motion vector into the previous frame, reads the color and luminance
+// moments history through the 2x2 bilinear taps that pass the consistency tests (same mesh,
+// similar depth and normal), falls back to the consistent pixels of the 3x3 neighbourhood, and
+// blends the new sample in with alpha = max(alpha_min, 1 / history). No consistent tap: the
+// history restarts at length 1 (disocclusion).
+#include <cmath>
+
+#include "core/hd.h"
+#include "core/params.h"
+#include "core/views.h"
+
+namespace svgf {
+
+struct ReprojectKernel {
+  GuideView guides;           // this frame
+  GuideView prev_guides;      // the previous frame's depth, normal and mesh id
+  ConstRgbView illumination;  // this frame, demodulated
+  // History, as the previous frame left it.
+  ConstRgbView prev_color;    // the feedback tap of the previous frame's a-trous
+  const float* prev_moment1 = nullptr;  // E[l]
+  const float* prev_moment2 = nullptr;  // E[l^2]
+  const float* prev_history = nullptr;  // frames accumulated (1 .. history_cap)
+  bool has_history = false;   // false on the first frame and after reset()
+  // Outputs.
+  IllumVarView accumulated;   // blended color and the temporal variance E[l^2] - E[l]^2
+  float* moment1 = nullptr;
+  float* moment2 = nullptr;
+  float* history = nullptr;
+  SvgfParams params;
+
+  // May the previous frame's pixel (xp, yp) stand for this frame's pixel i?
+  SVGF_HD bool tap_consistent(int i, int xp, int yp) const {
+    if (!prev_guides.inside(xp, yp)) return false;
+    const int j = prev_guides.index(xp, yp);
+    if (guides.mesh_id[i] != prev_guides.mesh_id[j]) return false;
+    const float z = guides.depth[i];
+    const float tolerance = params.reproject_depth_gradient_scale * guides.depth_fwidth(i) +
+                            params.reproject_depth_relative * z;
+    if (!(abs_f(z - prev_guides.depth[j]) <= tolerance)) return false;  // NaN fails too
+    return dot(guides.normal.load(i), prev_guides.normal.load(j)) >= params.reproject_normal_cos;
+  }
+
+  struct History {
+    Vec3 color;
+    Vec2 moments;
+    float length = 0.f;
+    bool valid = false;
+  };
+
+  SVGF_HD History read_history(int x, int y, int i) const {
+    History h;
+    if (!has_history || !guides.is_surface(i)) return h;
+    const float px = static_cast<float>(x) + guides.motion_x[i];
+    const float py = static_cast<float>(y) + guides.motion_y[i];
+    // Far outside (or NaN motion): no history, and no float-to-int conversion out of range.
+    if (!(abs_f(px) < 1e7f && abs_f(py) < 1e7f)) return h;
+    const float fx0 = floorf(px);
+    const float fy0 = floorf(py);
+    const int x0 = static_cast<int>(fx0);
+    const int y0 = static_cast<int>(fy0);
+    const float fx = px - fx0;
+    const float fy = py - fy0;
+    const float bilinear[4] = {(1.f - fx) * (1.f - fy), fx * (1.f - fy), (1.f - fx) * fy, fx * fy};
+    float weight_sum = 0.f;
+    for (int k = 0; k < 4; ++k) {
+      const int xk = x0 + (k & 1);
+      const int yk = y0 + (k >> 1);
+      if (!tap_consistent(i, xk, yk)) continue;
+      const int j = prev_guides.index(xk, yk);
+      const float w = bilinear[k];
+      h.color += prev_color.load(j) * w;
+      h.moments += make_vec2(prev_moment1[j], prev_moment2[j]) * w;
+      h.length = h.length + prev_history[j] * w;
+      weight_sum = weight_sum + w;
+    }
+    if (weight_sum >= params.reproject_min_weight) {
+      h.color = h.color / weight_sum;
+      h.moments = h.moments / weight_sum;
+      h.length = h.length / weight_sum;
+      h.valid = true;
+      return h;
+    }
+    // Fallback: the consistent pixels of the 3x3 block around the nearest previous pixel, equally
+    // weighted, in the hope of finding the surface somewhere near (Falcor).
+    h = History();
+    const int xn = static_cast<int>(floorf(px + 0.5f));
+    const int yn = static_cast<int>(floorf(py + 0.5f));
+    float count = 0.f;
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dx = -1; dx <= 1; ++dx) {
+        if (!tap_consistent(i, xn + dx, yn + dy)) continue;
+        const int j = prev_guides.index(xn + dx, yn + dy);
+        h.color += prev_color.load(j);
+        h.moments += make_vec2(prev_moment1[j], prev_moment2[j]);
+        h.length = h.length + prev_history[j];
+        count = count + 1.f;
+      }
+    }
+    if (count > 0.f) {
+      h.color = h.color / count;
+      h.moments = h.moments / count;
+      h.length = h.length / count;
+      h.valid = true;
+    }
+    return h;
+  }
+
+  SVGF_HD void operator()(int x, int y) const {
+    const int i = guides.index(x, y);
+    const Vec3 c = illumination.load(i);
+    const float l = luminance(c);
+    const History h = read_history(x, y, i);
+    const float length =
+        h.valid ? min_f(h.length + 1.f, static_cast<float>(params.history_cap)) : 1.f;
+    // With history h, alpha = 1/h makes the first frames an equal-weight mean.
+    const float alpha = h.valid ? max_f(params.alpha, 1.f / length) : 1.f;
+    const float alpha_m = h.valid ? max_f(params.moments_alpha, 1.f / length) : 1.f;
+    const Vec3 color = h.color + (c - h.color) * alpha;
+    const float m1 = h.moments.x + (l - h.moments.x) * alpha_m;
+    const float m2 = h.moments.y + (l * l - h.moments.y) * alpha_m;
+    accumulated.color.store(i, color);
+    accumulated.variance[i] = max_f(0.f, m2 - m1 * m1);
+    moment1[i] = m1;
+    moment2[i] = m2;
+    history[i] = length;
+  }
+};
+
+}  // namespace svgf

@@ -1,0 +1,56 @@
+#pragma once
+// Non-owning views of planar images, identical on host and device: a view is a bundle of plane
+// pointers, each plane width*height values in row-major order, pixel (x, y) at y*width + x.
+// Planar storage keeps GPU loads coalesced and CPU loops vectorizable.
+#include <cstdint>
+
+#include "core/hd.h"
+#include "core/vec.h"
+
+namespace svgf {
+
+// Three planes of an RGB (or XYZ) quantity. T is float or const float.
+template <class T>
+struct Rgb {
+  T* r = nullptr;
+  T* g = nullptr;
+  T* b = nullptr;
+  SVGF_HD Vec3 load(int i) const { return make_vec3(r[i], g[i], b[i]); }
+  SVGF_HD void store(int i, Vec3 v) const { r[i] = v.x; g[i] = v.y; b[i] = v.z; }
+  operator Rgb<const float>() const { return {r, g, b}; }
+};
+using RgbView = Rgb<float>;
+using ConstRgbView = Rgb<const float>;
+
+// Illumination with its variance in a fourth plane: what flows between the variance estimate
+// and the a-trous iterations (the variance is filtered alongside the color, paper Eq. 5).
+template <class T>
+struct IllumVar {
+  Rgb<T> color;
+  T* variance = nullptr;
+  operator IllumVar<const float>() const { return {color, variance}; }
+};
+using IllumVarView = IllumVar<float>;
+using ConstIllumVarView = IllumVar<const float>;
+
+// The G-buffer of one frame as the filters read it. Background pixels (no surface) have
+// depth <= 0; every test below treats them, and NaN depth, as "no surface".
+struct GuideView {
+  int width = 0;
+  int height = 0;
+  const float* depth = nullptr;     // linear view depth, > 0 on surfaces
+  const float* depth_dx = nullptr;  // d depth / d x, per pixel
+  const float* depth_dy = nullptr;  // d depth / d y
+  Rgb<const float> normal;          // world-space unit shading normal
+  const uint32_t* mesh_id = nullptr;
+  const float* motion_x = nullptr;  // pixels to the previous frame: prev = (x, y) + motion
+  const float* motion_y = nullptr;
+
+  SVGF_HD int index(int x, int y) const { return y * width + x; }
+  SVGF_HD bool inside(int x, int y) const { return x >= 0 && y >= 0 && x < width && y < height; }
+  // Largest absolute screen-space depth derivative (HLSL max(|ddx|,|ddy|), as Falcor stores it).
+  SVGF_HD float depth_fwidth(int i) const { return max_f(abs_f(depth_dx[i]), abs_f(depth_dy[i])); }
+  SVGF_HD bool is_surface(int i) const { return depth[i] > 0.f; }
+};
+
+}  // namespace svgf

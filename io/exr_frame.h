@@ -1,0 +1,53 @@
+#pragma once
+// The project's frame file: one multi-channel OpenEXR per frame (docs/frame-format.md).
+#include <string>
+
+#include "core/frame.h"
+#include "io/io_error.h"
+
+namespace svgf::io {
+
+enum class PixelStorage { Half, Float };
+
+// How each channel group is stored on disk. The reader accepts HALF or FLOAT for every float
+// channel (it converts to float); mesh_id is always UINT.
+struct FrameStorage {
+  PixelStorage color = PixelStorage::Float;      // color, direct, indirect
+  PixelStorage reference = PixelStorage::Float;  // reference
+  PixelStorage albedo = PixelStorage::Half;
+  PixelStorage normal = PixelStorage::Half;
+  PixelStorage position = PixelStorage::Float;
+  PixelStorage depth = PixelStorage::Float;      // depth and depth gradient
+  PixelStorage motion = PixelStorage::Float;
+};
+
+// Channel names, in one place.
+namespace channel {
+inline constexpr const char* kColor[3] = {"color.R", "color.G", "color.B"};
+inline constexpr const char* kAlbedo[3] = {"albedo.R", "albedo.G", "albedo.B"};
+inline constexpr const char* kNormal[3] = {"normal.X", "normal.Y", "normal.Z"};
+inline constexpr const char* kPosition[3] = {"position.X", "position.Y", "position.Z"};
+inline constexpr const char* kDepth = "depth.Z";
+inline constexpr const char* kDepthGradient[2] = {"depth_gradient.X", "depth_gradient.Y"};
+inline constexpr const char* kMotion[2] = {"motion.X", "motion.Y"};
+inline constexpr const char* kMeshId = "mesh_id";
+inline constexpr const char* kReference[3] = {"reference.R", "reference.G", "reference.B"};
+inline constexpr const char* kDirect[3] = {"direct.R", "direct.G", "direct.B"};
+inline constexpr const char* kIndirect[3] = {"indirect.R", "indirect.G", "indirect.B"};
+}  // namespace channel
+
+// Writes `frame` to `path` atomically (a temporary file in the same folder, then rename).
+// Header attributes: svgf.format_version, svgf.frame, svgf.world_to_view, svgf.view_to_clip.
+void write_frame(const std::string& path, const Frame& frame, const FrameStorage& storage = {});
+
+// Reads a frame file. Throws IoError naming the file (and channel) when the file is missing,
+// is not an OpenEXR file, lacks a required channel, has a channel of the wrong pixel type, or
+// has a data window other than (0,0)-(w-1,h-1).
+Frame read_frame(const std::string& path);
+
+// Writes a linear RGB image (channels R, G, B, FLOAT) atomically: the denoiser's output.
+void write_rgb_exr(const std::string& path, const Image& rgb);
+// Reads an R, G, B image (HALF or FLOAT) written by write_rgb_exr or any other tool.
+Image read_rgb_exr(const std::string& path);
+
+}  // namespace svgf::io
