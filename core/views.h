@@ -3,6 +3,7 @@
 // pointers, each plane width*height values in row-major order, pixel (x, y) at y*width + x.
 // Planar storage keeps GPU loads coalesced and CPU loops vectorizable.
 #include <cstdint>
+#include <type_traits>
 
 #include "core/hd.h"
 #include "core/vec.h"
@@ -15,9 +16,14 @@ struct Rgb {
   T* r = nullptr;
   T* g = nullptr;
   T* b = nullptr;
+  Rgb() = default;
+  SVGF_HD Rgb(T* r_, T* g_, T* b_) : r(r_), g(g_), b(b_) {}
+  // A writable view converts to a read-only one.
+  template <class U, class = std::enable_if_t<std::is_same<const U, T>::value &&
+                                              !std::is_same<U, T>::value>>
+  SVGF_HD Rgb(const Rgb<U>& o) : r(o.r), g(o.g), b(o.b) {}
   SVGF_HD Vec3 load(int i) const { return make_vec3(r[i], g[i], b[i]); }
   SVGF_HD void store(int i, Vec3 v) const { r[i] = v.x; g[i] = v.y; b[i] = v.z; }
-  operator Rgb<const float>() const { return {r, g, b}; }
 };
 using RgbView = Rgb<float>;
 using ConstRgbView = Rgb<const float>;
@@ -28,7 +34,11 @@ template <class T>
 struct IllumVar {
   Rgb<T> color;
   T* variance = nullptr;
-  operator IllumVar<const float>() const { return {color, variance}; }
+  IllumVar() = default;
+  SVGF_HD IllumVar(Rgb<T> c, T* v) : color(c), variance(v) {}
+  template <class U, class = std::enable_if_t<std::is_same<const U, T>::value &&
+                                              !std::is_same<U, T>::value>>
+  SVGF_HD IllumVar(const IllumVar<U>& o) : color(o.color), variance(o.variance) {}
 };
 using IllumVarView = IllumVar<float>;
 using ConstIllumVarView = IllumVar<const float>;

@@ -45,6 +45,11 @@ void write_frame(const std::string& path, const Frame& frame, const FrameStorage
 // has a data window other than (0,0)-(w-1,h-1).
 Frame read_frame(const std::string& path);
 
+namespace detail {
+// read_frame that also reports whether the file carried svgf.frame (Sequence::read needs it).
+Frame read_frame(const std::string& path, bool* has_frame_index);
+}  // namespace detail
+
 // Writes a linear RGB image (channels R, G, B, FLOAT) atomically: the denoiser's output.
 void write_rgb_exr(const std::string& path, const Image& rgb);
 // Reads an R, G, B image (HALF or FLOAT) written by write_rgb_exr or any other tool.

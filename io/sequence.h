@@ -46,6 +46,8 @@ class Sequence {
   // Reads frame k; throws IoError if its size differs from the manifest's (naming the file).
   Frame read(int k) const;
   bool is_camera_cut(int k) const;
+  // Throws IoError naming the file when frame k's SHA-256 differs from the manifest's.
+  void verify_checksum(int k) const;
 
  private:
   std::string dir_;
@@ -70,6 +72,7 @@ class SequenceWriter {
   FrameStorage storage_;
   std::vector<ManifestFile> files_;
   bool committed_ = false;
+  int width_ = 0, height_ = 0;  // of the frames added so far (all must match)
 };
 
 }  // namespace svgf::io

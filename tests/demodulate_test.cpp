@@ -1,0 +1,54 @@
+#include <cmath>
+#include <limits>
+
+#include <catch2/catch.hpp>
+
+#include "core/demodulate.h"
+#include "core/remodulate.h"
+#include "kernels_cpu/parallel_for.h"
+#include "test_support.h"
+
+using namespace svgf;
+
+TEST_CASE("demodulate: a constant image stays constant", "[demodulate]") {
+  Image color(19, 7, 3, 0.75f), albedo(19, 7, 3, 0.3f), illum(19, 7, 3, -1.f);
+  DemodulateKernel k{19, color.rgb(), albedo.rgb(), illum.rgb(), 1e-3f};
+  REQUIRE(cpu::count_pixels(19, 7, k) == 0);
+  for (float v : illum.data()) REQUIRE(v == 0.75f / 0.3f);
+}
+
+TEST_CASE("demodulate: zero and NaN albedo are clamped, never divided by", "[demodulate]") {
+  Image color(4, 1, 3, 2.f), albedo(4, 1, 3, 0.f), illum(4, 1, 3);
+  albedo.at(1, 0, 0) = std::numeric_limits<float>::quiet_NaN();
+  albedo.at(2, 0, 1) = -1.f;
+  DemodulateKernel k{4, color.rgb(), albedo.rgb(), illum.rgb(), 1e-3f};
+  cpu::for_each_pixel(4, 1, k);
+  for (float v : illum.data()) REQUIRE(v == 2.f / 1e-3f);
+}
+
+TEST_CASE("demodulate: NaN, Inf and negative color are replaced by 0 and counted",
+          "[demodulate]") {
+  Image color(5, 2, 3), albedo(5, 2, 3, 0.5f), illum(5, 2, 3);
+  test::fill_uniform(color, 0.1f, 4.f, 7);
+  color.at(0, 0, 0) = std::numeric_limits<float>::quiet_NaN();
+  color.at(3, 0, 2) = std::numeric_limits<float>::infinity();
+  color.at(4, 1, 1) = -0.25f;
+  color.at(4, 1, 2) = -std::numeric_limits<float>::infinity();  // same pixel: counted once
+  DemodulateKernel k{5, color.rgb(), albedo.rgb(), illum.rgb(), 1e-3f};
+  REQUIRE(cpu::count_pixels(5, 2, k) == 3);
+  CHECK(illum.at(0, 0, 0) == 0.f);
+  CHECK(illum.at(0, 0, 1) == color.at(0, 0, 1) / 0.5f);  // the other channels are kept
+  CHECK(illum.at(3, 0, 2) == 0.f);
+  CHECK(illum.at(4, 1, 1) == 0.f);
+  CHECK(illum.at(4, 1, 2) == 0.f);
+  for (float v : illum.data()) REQUIRE(std::isfinite(v));
+}
+
+TEST_CASE("remodulate undoes demodulate to within an ulp", "[demodulate][remodulate]") {
+  Image color(33, 9, 3), albedo(33, 9, 3), illum(33, 9, 3), out(33, 9, 3);
+  test::fill_uniform(color, 0.f, 20.f, 1);
+  test::fill_uniform(albedo, 0.01f, 1.f, 2);
+  cpu::for_each_pixel(33, 9, DemodulateKernel{33, color.rgb(), albedo.rgb(), illum.rgb(), 1e-3f});
+  cpu::for_each_pixel(33, 9, RemodulateKernel{33, illum.rgb(), albedo.rgb(), out.rgb(), 1e-3f});
+  REQUIRE(test::max_relative_difference(out, color) <= 2.4e-7);  // two roundings
+}

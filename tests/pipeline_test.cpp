@@ -1,0 +1,200 @@
+// The whole SVGF pipeline on the CPU backend through the public Denoiser interface.
+#include <cmath>
+#include <limits>
+#include <thread>
+
+#include <catch2/catch.hpp>
+
+#include "core/denoiser.h"
+#include "core/svgf_pipeline.h"
+#include "kernels_cpu/ieee_guard.h"
+#include "kernels_cpu/parallel_for.h"
+#include "metrics/image_metrics.h"
+#include "synthetic_sequence.h"
+#include "test_support.h"
+
+using namespace svgf;
+
+namespace {
+
+DenoiserConfig cpu_config(int threads) {
+  DenoiserConfig c;
+  c.backend = Backend::Cpu;
+  c.threads = threads;
+  return c;
+}
+
+std::vector<Image> denoise_sequence(Denoiser& d, const test::SyntheticScene& scene, int frames) {
+  std::vector<Image> out;
+  for (int k = 0; k < frames; ++k) {
+    out.emplace_back();
+    d.denoise(scene.frame(k), out.back());
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("pipeline: denoising a moving synthetic sequence beats the noisy input",
+          "[pipeline]") {
+  test::SyntheticScene scene;
+  auto d = make_denoiser(cpu_config(0));
+  double noisy_psnr = 0, denoised_psnr = 0;
+  for (int k = 0; k < 10; ++k) {
+    const Frame f = scene.frame(k);
+    Image out;
+    d->denoise(f, out);
+    noisy_psnr = metrics::psnr(f.color, f.reference);
+    denoised_psnr = metrics::psnr(out, f.reference);
+    for (float v : out.data()) REQUIRE(std::isfinite(v));
+  }
+  INFO("noisy " << noisy_psnr << " dB, denoised " << denoised_psnr << " dB");
+  REQUIRE(denoised_psnr > noisy_psnr + 8.0);
+  // Wall pixels the square uncovered this frame have no history, except the first column, which
+  // the 3x3 fallback joins to the wall beside it.
+  const Image history = d->read_buffer(DebugBuffer::HistoryLength);
+  const int k = 9, y = scene.square_y() + scene.square / 2;
+  for (int x = scene.square_x(k) - scene.speed + 1; x < scene.square_x(k); ++x)
+    REQUIRE(history.at(x, y, 0) == 1.f);
+  REQUIRE(history.at(scene.square_x(k) - scene.speed, y, 0) > 1.f);
+  REQUIRE(history.at(scene.square_x(k) + 3, y, 0) == 10.f);  // the square tracked its motion
+  REQUIRE(history.at(2, 2, 0) == 10.f);                      // the static wall
+}
+
+TEST_CASE("pipeline: identical bits on 1 and 2 threads and from run to run", "[pipeline][determinism]") {
+  test::SyntheticScene scene;
+  auto one = make_denoiser(cpu_config(1));
+  auto two = make_denoiser(cpu_config(2));
+  auto again = make_denoiser(cpu_config(2));
+  const auto a = denoise_sequence(*one, scene, 6);
+  const auto b = denoise_sequence(*two, scene, 6);
+  const auto c = denoise_sequence(*again, scene, 6);
+  for (int k = 0; k < 6; ++k) {
+    test::require_identical(a[k], b[k], "1 vs 2 threads, frame " + std::to_string(k));
+    test::require_identical(b[k], c[k], "run vs rerun, frame " + std::to_string(k));
+  }
+  test::require_identical(one->read_buffer(DebugBuffer::ColorHistory),
+                          two->read_buffer(DebugBuffer::ColorHistory), "color history");
+}
+
+TEST_CASE("pipeline: subnormals survive in TBB workers even if the caller flushes them",
+          "[pipeline][determinism]") {
+  // 1e-39 * 0.5 is subnormal: with FTZ it would become 0.
+  Image color(64, 64, 3, 2e-39f), albedo(64, 64, 3, 0.5f), illum(64, 64, 3);
+  {
+#if defined(SVGF_HAVE_MXCSR)
+    const unsigned saved = _mm_getcsr();
+    _mm_setcsr(saved | cpu::ScopedIeeeFloat::kFtz | cpu::ScopedIeeeFloat::kDaz);
+#endif
+    tbb::task_arena arena(2);
+    arena.execute([&] {
+      cpu::for_each_pixel(64, 64, DemodulateKernel{64, color.rgb(), albedo.rgb(), illum.rgb(), 1e-3f});
+    });
+#if defined(SVGF_HAVE_MXCSR)
+    _mm_setcsr(saved);
+#endif
+  }
+  const float expect = 2e-39f / 0.5f;
+  REQUIRE(expect > 0.f);
+  for (float v : illum.data()) REQUIRE(v == expect);
+}
+
+TEST_CASE("pipeline: the feedback tap is what the next frame reads", "[pipeline]") {
+  test::SyntheticScene scene;
+  DenoiserConfig config = cpu_config(2);
+  config.svgf.iterations = 3;
+  config.svgf.feedback_tap = 0;
+  auto d = make_denoiser(config);
+  const Frame f0 = scene.frame(0);
+  Image out;
+  d->denoise(f0, out);
+
+  // Recompute frame 0 stage by stage up to the first a-trous iteration.
+  const int w = scene.width, h = scene.height;
+  const SvgfParams& p = config.svgf;
+  Image illum(w, h, 3), acc(w, h, 4), moments(w, h, 2), hist(w, h, 1), var(w, h, 4), it0(w, h, 4);
+  Image none3(w, h, 3), none1(w, h, 1);
+  cpu::for_each_pixel(w, h, DemodulateKernel{w, f0.color.rgb(), f0.albedo.rgb(), illum.rgb(), p.albedo_epsilon});
+  ReprojectKernel r;
+  r.guides = r.prev_guides = f0.guides();
+  r.illumination = illum.rgb();
+  r.prev_color = none3.rgb();
+  r.prev_moment1 = r.prev_moment2 = r.prev_history = none1.plane(0);
+  r.has_history = false;
+  r.accumulated = {acc.rgb(), acc.plane(3)};
+  r.moment1 = moments.plane(0);
+  r.moment2 = moments.plane(1);
+  r.history = hist.plane(0);
+  r.params = p;
+  cpu::for_each_pixel(w, h, r);
+  cpu::for_each_pixel(w, h, VarianceKernel{f0.guides(), {acc.rgb(), acc.plane(3)}, moments.plane(0),
+                                           moments.plane(1), hist.plane(0), {var.rgb(), var.plane(3)}, p});
+  cpu::for_each_pixel(w, h, AtrousKernel{f0.guides(), {var.rgb(), var.plane(3)}, {it0.rgb(), it0.plane(3)}, 1, p});
+  Image it0_rgb(w, h, 3);
+  for (int c = 0; c < 3; ++c) std::copy(it0.plane(c), it0.plane(c) + w * h, it0_rgb.plane(c));
+  const Image history = d->read_buffer(DebugBuffer::ColorHistory);
+  test::require_identical(history, it0_rgb, "color history vs a-trous iteration 0");
+
+  // Frame 1 (the wall is static) blends its sample into exactly that history at alpha 1/2.
+  const Frame f1 = scene.frame(1);
+  d->denoise(f1, out);
+  const Image acc1 = d->read_buffer(DebugBuffer::Accumulated);
+  const Image illum1 = d->read_buffer(DebugBuffer::Illumination);
+  for (int x = 0; x < 4; ++x) {
+    const float hv = history.at(x, 2, 0);
+    REQUIRE(acc1.at(x, 2, 0) == hv + (illum1.at(x, 2, 0) - hv) * 0.5f);
+  }
+}
+
+TEST_CASE("pipeline: NaN, Inf and negative input is counted and does not poison the history",
+          "[pipeline]") {
+  test::SyntheticScene scene;
+  auto clean = make_denoiser(cpu_config(2));
+  auto dirty = make_denoiser(cpu_config(2));
+  Image out_clean, out_dirty;
+  for (int k = 0; k < 5; ++k) {
+    Frame f = scene.frame(k);
+    Frame g = f;
+    if (k == 2) {
+      // The same pixels set to 0 in the clean run: the documented replacement.
+      const int bad[][2] = {{10, 10}, {30, 20}, {50, 40}};
+      const float values[] = {std::numeric_limits<float>::quiet_NaN(),
+                              std::numeric_limits<float>::infinity(), -3.f};
+      for (int j = 0; j < 3; ++j) {
+        g.color.at(bad[j][0], bad[j][1], j) = values[j];
+        f.color.at(bad[j][0], bad[j][1], j) = 0.f;
+      }
+    }
+    clean->denoise(f, out_clean);
+    dirty->denoise(g, out_dirty);
+    REQUIRE(dirty->last_report().replaced_samples == (k == 2 ? 3 : 0));
+    for (float v : out_dirty.data()) REQUIRE(std::isfinite(v));
+    test::require_identical(out_dirty, out_clean, "frame " + std::to_string(k));
+  }
+}
+
+TEST_CASE("pipeline: bad configurations and size changes are clear errors", "[pipeline]") {
+  DenoiserConfig fast = cpu_config(1);
+  fast.mode = Mode::Fast;
+  REQUIRE_THROWS_WITH(make_denoiser(fast), Catch::Contains("fast mode"));
+  auto d = make_denoiser(cpu_config(1));
+  Image out;
+  d->denoise(test::flat_frame(16, 8), out);
+  REQUIRE_THROWS_WITH(d->denoise(test::flat_frame(8, 8), out), Catch::Contains("16x8 to 8x8"));
+  Frame broken = test::flat_frame(16, 8);
+  broken.albedo = Image(16, 7, 3);
+  REQUIRE_THROWS_WITH(d->denoise(broken, out), Catch::Contains("albedo"));
+  REQUIRE_THROWS_WITH(parse_backend("gpu"), Catch::Contains("gpu"));
+}
+
+TEST_CASE("pipeline: reset() restarts the history", "[pipeline]") {
+  test::SyntheticScene scene;
+  auto d = make_denoiser(cpu_config(2));
+  Image out;
+  d->denoise(scene.frame(0), out);
+  d->denoise(scene.frame(1), out);
+  REQUIRE(d->read_buffer(DebugBuffer::HistoryLength).at(1, 1, 0) == 2.f);
+  d->reset();
+  d->denoise(scene.frame(2), out);
+  REQUIRE(d->read_buffer(DebugBuffer::HistoryLength).at(1, 1, 0) == 1.f);
+}

@@ -1,0 +1,1 @@
+svgf_add_tests(svgf_pipeline_tests SOURCES pipeline_test.cpp LIBS svgf_pipeline svgf_metrics)
