@@ -1,0 +1,41 @@
+// svgf: the command-line front end. Subcommands: denoise (and help).
+#include <cstdio>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "app/denoise_command.h"
+#include "app/options.h"
+
+namespace {
+
+const char* const kUsage =
+    "usage: svgf <command> [options]\n"
+    "\n"
+    "commands:\n"
+    "  denoise IN_DIR OUT_DIR   denoise a frame sequence (svgf denoise --help)\n"
+    "  help                     this text\n"
+    "\n"
+    "Fixtures are made and checked by svgf-fixtures.\n";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.empty() || args[0] == "help" || args[0] == "--help" || args[0] == "-h") {
+    std::fputs(kUsage, args.empty() ? stderr : stdout);
+    return args.empty() ? 2 : 0;
+  }
+  const std::vector<std::string> rest(args.begin() + 1, args.end());
+  try {
+    if (args[0] == "denoise") return svgf::app::denoise_command(rest);
+    throw svgf::app::UsageError("unknown command '" + args[0] + "'");
+  } catch (const svgf::app::UsageError& e) {
+    std::fprintf(stderr, "svgf: %s\n%s", e.what(),
+                 args[0] == "denoise" ? svgf::app::kDenoiseUsage : kUsage);
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "svgf: error: %s\n", e.what());
+    return 1;
+  }
+}

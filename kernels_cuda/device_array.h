@@ -1,0 +1,52 @@
+#pragma once
+// Device memory owned RAII-style. Host-compilable (CUDA runtime API only), so tests and tools
+// written in plain C++ can stage data for single-stage runs.
+#include <cstddef>
+#include <vector>
+
+#include "kernels_cuda/cuda_check.h"
+
+namespace svgf::cuda {
+
+template <class T>
+class DeviceArray {
+ public:
+  DeviceArray() = default;
+  explicit DeviceArray(size_t n) { resize(n); }
+  DeviceArray(const T* host, size_t n) { resize(n); upload(host, n); }
+  ~DeviceArray() { release(); }
+  DeviceArray(const DeviceArray&) = delete;
+  DeviceArray& operator=(const DeviceArray&) = delete;
+  DeviceArray(DeviceArray&& o) noexcept : ptr_(o.ptr_), size_(o.size_) { o.ptr_ = nullptr; o.size_ = 0; }
+  DeviceArray& operator=(DeviceArray&& o) noexcept {
+    if (this != &o) { release(); ptr_ = o.ptr_; size_ = o.size_; o.ptr_ = nullptr; o.size_ = 0; }
+    return *this;
+  }
+
+  void resize(size_t n) {
+    if (n == size_) return;
+    release();
+    if (n) SVGF_CUDA_CHECK(cudaMalloc(reinterpret_cast<void**>(&ptr_), n * sizeof(T)), "cudaMalloc");
+    size_ = n;
+  }
+  void upload(const T* host, size_t n) {
+    SVGF_CUDA_CHECK(cudaMemcpy(ptr_, host, n * sizeof(T), cudaMemcpyHostToDevice), "upload");
+  }
+  void download(T* host, size_t n) const {
+    SVGF_CUDA_CHECK(cudaMemcpy(host, ptr_, n * sizeof(T), cudaMemcpyDeviceToHost), "download");
+  }
+  std::vector<T> to_host() const { std::vector<T> v(size_); download(v.data(), size_); return v; }
+  T* get() const { return ptr_; }
+  size_t size() const { return size_; }
+
+ private:
+  void release() {
+    if (ptr_) cudaFree(ptr_);
+    ptr_ = nullptr;
+    size_ = 0;
+  }
+  T* ptr_ = nullptr;
+  size_t size_ = 0;
+};
+
+}  // namespace svgf::cuda

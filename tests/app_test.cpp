@@ -1,0 +1,82 @@
+// The svgf denoise command end to end on a generated sequence: outputs, report, bad input.
+#include <filesystem>
+#include <fstream>
+
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include "app/denoise_command.h"
+#include "io/exr_frame.h"
+#include "io/sequence.h"
+#include "synthetic_sequence.h"
+#include "test_support.h"
+
+namespace fs = std::filesystem;
+using namespace svgf;
+
+namespace {
+
+fs::path scratch(const std::string& name) {
+  const fs::path p = fs::temp_directory_path() / ("svgf_app_test_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(p);
+  return p;
+}
+
+fs::path write_synthetic(const fs::path& dir, int frames) {
+  test::SyntheticScene scene;
+  io::SequenceWriter writer(dir.string(), io::FrameStorage{});
+  for (int k = 0; k < frames; ++k) writer.add(scene.frame(k));
+  io::Manifest m;
+  m.scene = "synthetic";
+  m.generator = "app_test";
+  writer.commit(m);
+  return dir;
+}
+
+}  // namespace
+
+TEST_CASE("svgf denoise writes frames, previews and a report", "[app]") {
+  const fs::path in = write_synthetic(scratch("in"), 4), out = scratch("out");
+  REQUIRE(app::denoise_command({in.string(), out.string(), "--backend", "cpu", "--threads", "2"}) == 0);
+  for (int k = 0; k < 4; ++k) {
+    const std::string name = io::frame_file_name(k);
+    const Image img = io::read_rgb_exr((out / name).string());
+    REQUIRE(img.width() == 64);
+    REQUIRE(fs::file_size(out / "preview" / (name.substr(0, name.size() - 4) + ".png")) > 100);
+  }
+  std::ifstream f(out / "report.json");
+  const auto report = nlohmann::json::parse(f);
+  REQUIRE(report["frames"].size() == 4);
+  REQUIRE(report["mean_psnr_denoised_db"].get<double>() > report["mean_psnr_noisy_db"].get<double>() + 5);
+  REQUIRE(report["denoiser"].get<std::string>().find("cpu") != std::string::npos);
+  // Nothing half-written is left behind.
+  for (const auto& e : fs::recursive_directory_iterator(out))
+    REQUIRE(e.path().filename().string().find(".tmp") == std::string::npos);
+  fs::remove_all(in);
+  fs::remove_all(out);
+}
+
+TEST_CASE("svgf denoise: bad input is an error naming the file", "[app]") {
+  const fs::path out = scratch("bad_out");
+  REQUIRE_THROWS_WITH(app::denoise_command({"/nonexistent/seq", out.string()}),
+                      Catch::Contains("/nonexistent/seq"));
+  // A frame that lost a channel.
+  const fs::path in = write_synthetic(scratch("bad_in"), 2);
+  Frame broken = test::SyntheticScene().frame(1);
+  broken.albedo = Image();
+  REQUIRE_THROWS(io::write_frame((in / io::frame_file_name(1)).string(), broken));
+  {
+    std::ofstream junk(in / io::frame_file_name(1));
+    junk << "not an exr";
+  }
+  REQUIRE_THROWS_WITH(app::denoise_command({in.string(), out.string(), "--backend", "cpu"}),
+                      Catch::Contains(io::frame_file_name(1)));
+  REQUIRE_THROWS_WITH(app::denoise_command({in.string(), out.string(), "--backend", "gpu"}),
+                      Catch::Contains("gpu"));
+  REQUIRE_THROWS_WITH(app::denoise_command({in.string(), out.string(), "--iterations", "x"}),
+                      Catch::Contains("--iterations"));
+  fs::remove_all(in);
+  fs::remove_all(out);
+}
