@@ -10,9 +10,27 @@
 
 namespace svgf {
 
+// 3x3 Gaussian of the variance around an interior pixel i (all taps inside). The weights are
+// exact binary fractions summing to exactly 1, but the division is kept so the result has the
+// same bits as the border version below.
+SVGF_HD float prefiltered_variance_interior(const float* variance, int width, int i) {
+  float sum = 0.f;
+  float weight_sum = 0.f;
+  for (int dy = -1; dy <= 1; ++dy) {
+    for (int dx = -1; dx <= 1; ++dx) {
+      const float k = gauss3_weight(dx < 0 ? -dx : dx) * gauss3_weight(dy < 0 ? -dy : dy);
+      sum = sum + variance[i + dy * width + dx] * k;
+      weight_sum = weight_sum + k;
+    }
+  }
+  return sum / weight_sum;
+}
+
 // 3x3 Gaussian of the variance around (x, y). Out-of-image taps are skipped and the weights
 // renormalized (the project's border rule).
 SVGF_HD float prefiltered_variance(const GuideView& g, const float* variance, int x, int y) {
+  if (x > 0 && y > 0 && x < g.width - 1 && y < g.height - 1)
+    return prefiltered_variance_interior(variance, g.width, g.index(x, y));
   float sum = 0.f;
   float weight_sum = 0.f;
   for (int dy = -1; dy <= 1; ++dy) {
@@ -47,6 +65,7 @@ struct AtrousKernel {
     const float phi_z = params.phi_depth *
                         max_f(guides.depth_fwidth(i), params.depth_gradient_floor);
     const EdgeSample c{guides.depth[i], guides.normal.load(i), luminance(center_color)};
+    const NormalPower normal_power = NormalPower::of(params.phi_normal);
 
     // The centre enters with its kernel weight and no edge-stopping term, so the sum is never 0.
     const float center_k = b3_weight(0) * b3_weight(0);
@@ -64,7 +83,7 @@ struct AtrousKernel {
         const EdgeSample q{guides.depth[j], guides.normal.load(j), luminance(cq)};
         const float k = b3_weight(dx < 0 ? -dx : dx) * b3_weight(dy < 0 ? -dy : dy);
         const float w = edge_stopping_weight(c, q, phi_z * tap_distance(dx, dy, step),
-                                             params.phi_normal, phi_l) * k;
+                                             normal_power, phi_l) * k;
         weight_sum = weight_sum + w;
         color_sum += cq * w;
         variance_sum = variance_sum + in.variance[j] * (w * w);

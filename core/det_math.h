@@ -19,13 +19,12 @@ SVGF_HD float bits_float(uint32_t u) { float f; memcpy(&f, &u, sizeof f); return
 SVGF_HD uint64_t double_bits(double d) { uint64_t u; memcpy(&u, &d, sizeof u); return u; }
 SVGF_HD double bits_double(uint64_t u) { double d; memcpy(&d, &u, sizeof d); return d; }
 
-// exp(x) in float. Cody-Waite reduction x = k ln2 + r with |r| <= ln2/2 (ln2 split so k*ln2_hi
-// is exact for |k| <= 255), the Cephes expf minimax polynomial for e^r, then 2^k applied as two
-// exact power-of-two factors so that a subnormal result is rounded only once. Branch-free but
-// for the NaN pass-through, so the CPU loops can vectorize it.
-SVGF_HD float det_exp(float x) {
-  const float xc = min_f(max_f(x, -104.f), 89.f);  // below: 0, above: +Inf; NaN lands on -104
-  const float k = floorf(xc * 1.44269504088896341f + 0.5f);
+// exp(x) in float for x already clamped to [-104, 89]. Cody-Waite reduction x = k ln2 + r with
+// |r| <= ln2/2 (ln2 split so k*ln2_hi is exact for |k| <= 255), the Cephes expf minimax
+// polynomial for e^r, then 2^k applied as two exact power-of-two factors so that a subnormal
+// result is rounded only once. Straight-line code, so the CPU loops vectorize it.
+SVGF_HD float det_exp_clamped(float xc) {
+  const float k = floor_small(xc * 1.44269504088896341f + 0.5f);  // |k| <= 150
   const float r = (xc - k * 0.693145751953125f) - k * 1.428606765330187e-06f;
   const float r2 = r * r;
   float p = 1.9875691500e-4f;
@@ -40,9 +39,18 @@ SVGF_HD float det_exp(float x) {
   const int k2 = ki - k1;
   const float s1 = bits_float(static_cast<uint32_t>(k1 + 127) << 23);
   const float s2 = bits_float(static_cast<uint32_t>(k2 + 127) << 23);
-  const float out = (y * s1) * s2;  // y*s1 is exact; the only rounding is the last product
+  return (y * s1) * s2;  // y*s1 is exact; the only rounding is the last product
+}
+
+// exp(x) in float, any x: below -104 the result is 0, above 89 +Inf, NaN stays NaN.
+SVGF_HD float det_exp(float x) {
+  const float out = det_exp_clamped(min_f(max_f(x, -104.f), 89.f));  // NaN lands on -104
   return x == x ? out : x;
 }
+
+// exp(x) for x <= 0 or NaN (NaN gives 0): the edge-stopping weights' case. The same bits as
+// det_exp for every x <= 0; with one clamp instead of two, GCC 12 if-converts (vectorizes) it.
+SVGF_HD float det_exp_nonpositive(float x) { return det_exp_clamped(max_f(x, -104.f)); }
 
 // exp(x) in double, same scheme with a degree-13 Taylor polynomial (error < 1e-16 on |r|<=ln2/2).
 // Used only inside det_pow, where a float result needs a few more bits than float carries.

@@ -14,15 +14,55 @@ struct EdgeSample {
   float luminance;
 };
 
-// phi_z is the depth tolerance for this tap (already scaled by gradient and distance); 0 means
-// "centre tap": no depth term. A NaN anywhere (bad guide data) yields weight 0, never NaN.
+// max(0, n.n')^phi_n. For phi_n = 2^m (the default 128 = 2^7, m <= 16) it is m squarings in
+// float: cheap, and the same bits whether m is known at run time (this struct, used by the
+// per-pixel kernels) or at compile time (NormalPowerFixed, used by the vectorized CPU rows).
+// Any other phi_n goes through det_pow.
+struct NormalPower {
+  float phi = 128.f;
+  int squarings = -1;  // m when phi = 2^m, else -1
+  SVGF_HD static NormalPower of(float phi_normal) {
+    NormalPower p;
+    p.phi = phi_normal;
+    float v = 1.f;
+    for (int m = 0; m <= 16; ++m, v = v * 2.f)
+      if (phi_normal == v) p.squarings = m;
+    return p;
+  }
+  SVGF_HD float operator()(float d) const {
+    if (squarings < 0) return det_pow(d, phi);
+    for (int i = 0; i < squarings; ++i) d = d * d;
+    return d;
+  }
+};
+
+template <int M>
+struct NormalPowerFixed {
+  SVGF_HD float operator()(float d) const {
+    for (int i = 0; i < M; ++i) d = d * d;
+    return d;
+  }
+};
+
+// phi_z is the depth tolerance for this tap (already scaled by gradient and distance). At the
+// centre tap phi_z = 0 and the depth difference is 0: 0/0 is NaN, which max_f drops, so the
+// centre has no depth term (Falcor's phiDepth == 0 case) without a branch, which keeps the CPU
+// row loops vectorizable. Any other tap with phi_z = 0 gets e_depth = Inf: weight 0. Bad guide
+// data (NaN) drops the term it is in or zeroes the weight; the weight is never NaN.
+template <class Power>
+SVGF_HD float edge_stopping_weight(const EdgeSample& c, const EdgeSample& q, float phi_z,
+                                   const Power& normal_power, float phi_l) {
+  const float w_normal = normal_power(max_f(0.f, dot(c.normal, q.normal)));
+  const float e_depth = abs_f(c.depth - q.depth) / phi_z;
+  const float e_lum = abs_f(c.luminance - q.luminance) / phi_l;
+  // The argument is <= 0 (or -0): both terms are clamped to >= 0 first.
+  const float w = det_exp_nonpositive((0.f - max_f(e_lum, 0.f)) - max_f(e_depth, 0.f)) * w_normal;
+  return w > 0.f ? w : 0.f;
+}
+
 SVGF_HD float edge_stopping_weight(const EdgeSample& c, const EdgeSample& q, float phi_z,
                                    float phi_normal, float phi_l) {
-  const float w_normal = det_pow(max_f(0.f, dot(c.normal, q.normal)), phi_normal);
-  const float e_depth = phi_z == 0.f ? 0.f : abs_f(c.depth - q.depth) / phi_z;
-  const float e_lum = abs_f(c.luminance - q.luminance) / phi_l;
-  const float w = det_exp((0.f - max_f(e_lum, 0.f)) - max_f(e_depth, 0.f)) * w_normal;
-  return w > 0.f ? w : 0.f;
+  return edge_stopping_weight(c, q, phi_z, NormalPower::of(phi_normal), phi_l);
 }
 
 // Distance in pixels of the tap (dx, dy) * step; sqrt is IEEE-exact on both sides.

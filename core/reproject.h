@@ -56,8 +56,8 @@ struct ReprojectKernel {
     const float py = static_cast<float>(y) + guides.motion_y[i];
     // Far outside (or NaN motion): no history, and no float-to-int conversion out of range.
     if (!(abs_f(px) < 1e7f && abs_f(py) < 1e7f)) return h;
-    const float fx0 = floorf(px);
-    const float fy0 = floorf(py);
+    const float fx0 = floor_small(px);
+    const float fy0 = floor_small(py);
     const int x0 = static_cast<int>(fx0);
     const int y0 = static_cast<int>(fy0);
     const float fx = px - fx0;
@@ -85,8 +85,8 @@ struct ReprojectKernel {
     // Fallback: the consistent pixels of the 3x3 block around the nearest previous pixel, equally
     // weighted, in the hope of finding the surface somewhere near (Falcor).
     h = History();
-    const int xn = static_cast<int>(floorf(px + 0.5f));
-    const int yn = static_cast<int>(floorf(py + 0.5f));
+    const int xn = static_cast<int>(floor_small(px + 0.5f));
+    const int yn = static_cast<int>(floor_small(py + 0.5f));
     float count = 0.f;
     for (int dy = -1; dy <= 1; ++dy) {
       for (int dx = -1; dx <= 1; ++dx) {

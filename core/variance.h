@@ -31,6 +31,7 @@ struct VarianceKernel {
     const EdgeSample c{guides.depth[i], guides.normal.load(i), luminance(center_color)};
     const float phi_z = params.spatial_variance_phi_depth *
                         max_f(guides.depth_fwidth(i), params.depth_gradient_floor);
+    const NormalPower normal_power = NormalPower::of(params.phi_normal);
     const int r = params.spatial_variance_radius;
     float weight_sum = 0.f;
     Vec3 color_sum;
@@ -44,7 +45,7 @@ struct VarianceKernel {
         const Vec3 cq = accumulated.color.load(j);
         const EdgeSample q{guides.depth[j], guides.normal.load(j), luminance(cq)};
         const float w = edge_stopping_weight(c, q, phi_z * tap_distance(dx, dy, 1),
-                                             params.phi_normal, params.phi_color);
+                                             normal_power, params.phi_color);
         weight_sum = weight_sum + w;
         color_sum += cq * w;
         moments_sum += make_vec2(moment1[j], moment2[j]) * w;

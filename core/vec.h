@@ -40,6 +40,13 @@ SVGF_HD float max_f(float a, float b) { return a > b ? a : b; }
 SVGF_HD float abs_f(float a) { return a < 0.f ? -a : a; }
 SVGF_HD Vec3 max_v(Vec3 a, float s) { return make_vec3(max_f(a.x, s), max_f(a.y, s), max_f(a.z, s)); }
 
+// floor for |x| < 2^31 through truncation, exact like floorf. Unlike floorf it vectorizes under
+// GCC's default -ftrapping-math (which keeps libm's floorf a call) and needs no libm on device.
+SVGF_HD float floor_small(float x) {
+  const int t = static_cast<int>(x);  // toward zero
+  return static_cast<float>(t - (static_cast<float>(t) > x ? 1 : 0));
+}
+
 // x - x is 0 for finite x and NaN for NaN and +-Inf, with no library call (isfinite is not
 // reliably available on both sides without including <cmath> into device code).
 SVGF_HD bool is_finite(float x) { return (x - x) == 0.f; }

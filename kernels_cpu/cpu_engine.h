@@ -7,6 +7,7 @@
 #include <tbb/task_arena.h>
 
 #include "core/stage_times.h"
+#include "kernels_cpu/filter_rows.h"
 #include "kernels_cpu/parallel_for.h"
 
 namespace svgf::cpu {
@@ -20,9 +21,15 @@ class CpuEngine {
 
   template <class Kernel>
   void run(Stage stage, const Kernel& kernel, int width, int height) {
-    const auto t0 = std::chrono::steady_clock::now();
-    arena_.execute([&] { for_each_pixel(width, height, kernel); });
-    times_[stage] += elapsed_ms(t0);
+    timed(stage, [&] { for_each_pixel(width, height, kernel); });
+  }
+
+  // The wide-neighbourhood stages take their vectorized row drivers (same bits).
+  void run(Stage stage, const AtrousKernel& kernel, int width, int height) {
+    timed(stage, [&] { run_atrous_rows(kernel, width, height); });
+  }
+  void run(Stage stage, const VarianceKernel& kernel, int width, int height) {
+    timed(stage, [&] { run_variance_rows(kernel, width, height); });
   }
 
   template <class Kernel>
@@ -40,6 +47,12 @@ class CpuEngine {
   int64_t counted() const { return counted_; }
 
  private:
+  template <class Work>
+  void timed(Stage stage, const Work& work) {
+    const auto t0 = std::chrono::steady_clock::now();
+    arena_.execute(work);
+    times_[stage] += elapsed_ms(t0);
+  }
   static double elapsed_ms(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
         .count();

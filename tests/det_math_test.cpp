@@ -107,3 +107,13 @@ TEST_CASE("det_pow special values", "[det_math]") {
   // 0.5^140 = 2^-140 is subnormal in float and must come out exactly.
   CHECK(det_pow(0.5f, 140.f) == std::ldexp(1.f, -140));
 }
+
+TEST_CASE("det_exp_nonpositive gives det_exp's bits for every x <= 0", "[det_math]") {
+  const uint32_t end = float_bits(110.f);
+  for (uint32_t b = 0; b <= end; b += 7) {
+    const float x = -bits_float(b);
+    REQUIRE(float_bits(det_exp_nonpositive(x)) == float_bits(det_exp(x)));
+  }
+  REQUIRE(det_exp_nonpositive(-std::numeric_limits<float>::infinity()) == 0.f);
+  REQUIRE(det_exp_nonpositive(std::numeric_limits<float>::quiet_NaN()) == 0.f);
+}

@@ -1,0 +1,266 @@
+#include "kernels_cpu/filter_rows.h"
+
+#include <algorithm>
+#include <vector>
+
+#include "kernels_cpu/parallel_for.h"
+
+namespace svgf::cpu {
+namespace {
+
+// Per-task scratch: one row's per-pixel centre terms and running sums.
+struct RowScratch {
+  std::vector<float> a, b, sw, s0, s1, s2, s3;
+  explicit RowScratch(int w) : a(w), b(w), sw(w), s0(w), s1(w), s2(w), s3(w) {}
+};
+
+// GCC vectorizes the tap loops only as functions of their own whose arrays are all restrict
+// arguments: inlined into the row, the restrict promise is lost and the loop stays scalar.
+#define SVGF_TAP_LOOP __attribute__((noinline))
+
+// One a-trous tap (dx, dy) for pixels x0..x1 of a row: i indexes the centre, j = i + offset the
+// tap. The body is the per-pixel kernel's loop body.
+template <class Power>
+SVGF_TAP_LOOP void atrous_tap(const float* __restrict depth, const float* __restrict nx,
+                const float* __restrict ny, const float* __restrict nz,
+                const float* __restrict lum, const float* __restrict cr,
+                const float* __restrict cg, const float* __restrict cb,
+                const float* __restrict var_in, const float* __restrict phi_z,
+                const float* __restrict phi_l, float* __restrict sw, float* __restrict sr,
+                float* __restrict sg, float* __restrict sb, float* __restrict sv, int row,
+                int offset, int x0, int x1, float dist, float kw, const Power& power) {
+  for (int x = x0; x < x1; ++x) {
+    const int i = row + x, j = row + offset + x;
+    const EdgeSample c{depth[i], make_vec3(nx[i], ny[i], nz[i]), lum[i]};
+    const EdgeSample q{depth[j], make_vec3(nx[j], ny[j], nz[j]), lum[j]};
+    const float wt = edge_stopping_weight(c, q, phi_z[x] * dist, power, phi_l[x]) * kw;
+    sw[x] = sw[x] + wt;
+    sr[x] = sr[x] + cr[j] * wt;
+    sg[x] = sg[x] + cg[j] * wt;
+    sb[x] = sb[x] + cb[j] * wt;
+    sv[x] = sv[x] + var_in[j] * (wt * wt);
+  }
+}
+
+// One tap of the 7x7 spatial variance estimate, likewise.
+template <class Power>
+SVGF_TAP_LOOP void variance_tap(const float* __restrict depth, const float* __restrict nx,
+                  const float* __restrict ny, const float* __restrict nz,
+                  const float* __restrict lum, const float* __restrict cr,
+                  const float* __restrict cg, const float* __restrict cb,
+                  const float* __restrict m1_in, const float* __restrict m2_in,
+                  const float* __restrict phi_z, float phi_color, float* __restrict sw,
+                  float* __restrict sr, float* __restrict sg, float* __restrict sb,
+                  float* __restrict sm1, float* __restrict sm2, int row, int offset, int x0,
+                  int x1, float dist, const Power& power) {
+  for (int x = x0; x < x1; ++x) {
+    const int i = row + x, j = row + offset + x;
+    const EdgeSample c{depth[i], make_vec3(nx[i], ny[i], nz[i]), lum[i]};
+    const EdgeSample q{depth[j], make_vec3(nx[j], ny[j], nz[j]), lum[j]};
+    const float wt = edge_stopping_weight(c, q, phi_z[x] * dist, power, phi_color);
+    sw[x] = sw[x] + wt;
+    sr[x] = sr[x] + cr[j] * wt;
+    sg[x] = sg[x] + cg[j] * wt;
+    sb[x] = sb[x] + cb[j] * wt;
+    sm1[x] = sm1[x] + m1_in[j] * wt;
+    sm2[x] = sm2[x] + m2_in[j] * wt;
+  }
+}
+
+// Runs body(power) with the normal-weight power as a compile-time policy for the usual
+// exponents 2^0 .. 2^10, else the run-time one. Same bits either way (NormalPower).
+template <class Body>
+void with_normal_power(float phi_normal, const Body& body) {
+  const NormalPower p = NormalPower::of(phi_normal);
+  switch (p.squarings) {
+    case 0: return body(NormalPowerFixed<0>());
+    case 1: return body(NormalPowerFixed<1>());
+    case 2: return body(NormalPowerFixed<2>());
+    case 3: return body(NormalPowerFixed<3>());
+    case 4: return body(NormalPowerFixed<4>());
+    case 5: return body(NormalPowerFixed<5>());
+    case 6: return body(NormalPowerFixed<6>());
+    case 7: return body(NormalPowerFixed<7>());
+    case 8: return body(NormalPowerFixed<8>());
+    case 9: return body(NormalPowerFixed<9>());
+    case 10: return body(NormalPowerFixed<10>());
+    default: return body(p);
+  }
+}
+
+template <class Rows>
+void parallel_rows(int height, const Rows& rows) {
+  tbb::parallel_for(tbb::blocked_range<int>(0, height, kRowsPerTask),
+                    [&](const tbb::blocked_range<int>& r) {
+                      ScopedIeeeFloat ieee;
+                      rows(r.begin(), r.end());
+                    });
+}
+
+// --- a-trous ---------------------------------------------------------------------------------
+
+template <class Power>
+void atrous_row(const AtrousKernel& k, const float* __restrict lum, int y, RowScratch& s,
+                const Power& power) {
+  const GuideView& g = k.guides;
+  const SvgfParams& p = k.params;
+  const int w = g.width, h = g.height, row = y * w;
+  const float* __restrict var_in = k.in.variance;
+  float* __restrict phi_l = s.a.data();
+  float* __restrict phi_z = s.b.data();
+  float* __restrict sw = s.sw.data();
+  float* __restrict sr = s.s0.data();
+  float* __restrict sg = s.s1.data();
+  float* __restrict sb = s.s2.data();
+  float* __restrict sv = s.s3.data();
+
+  // Centre terms: prefiltered variance (into phi_l), tolerances, the centre's own contribution.
+  if (y > 0 && y < h - 1 && w > 2) {
+    phi_l[0] = prefiltered_variance(g, var_in, 0, y);
+    for (int x = 1; x < w - 1; ++x) phi_l[x] = prefiltered_variance_interior(var_in, w, row + x);
+    phi_l[w - 1] = prefiltered_variance(g, var_in, w - 1, y);
+  } else {
+    for (int x = 0; x < w; ++x) phi_l[x] = prefiltered_variance(g, var_in, x, y);
+  }
+  const float center_k = b3_weight(0) * b3_weight(0);
+  for (int x = 0; x < w; ++x) {
+    const int i = row + x;
+    phi_l[x] = p.phi_color * sqrtf(max_f(0.f, p.variance_epsilon + phi_l[x]));
+    phi_z[x] = p.phi_depth * max_f(g.depth_fwidth(i), p.depth_gradient_floor);
+    sw[x] = center_k;
+    sr[x] = k.in.color.r[i] * center_k;
+    sg[x] = k.in.color.g[i] * center_k;
+    sb[x] = k.in.color.b[i] * center_k;
+    sv[x] = var_in[i] * (center_k * center_k);
+  }
+  // Taps in the per-pixel kernel's order; a tap row or column outside the image is skipped,
+  // exactly as the per-pixel kernel skips it.
+  const float* __restrict depth = g.depth;
+  const float* __restrict nx = g.normal.r;
+  const float* __restrict ny = g.normal.g;
+  const float* __restrict nz = g.normal.b;
+  const float* __restrict cr = k.in.color.r;
+  const float* __restrict cg = k.in.color.g;
+  const float* __restrict cb = k.in.color.b;
+  for (int dy = -2; dy <= 2; ++dy) {
+    const int yq = y + dy * k.step;
+    if (yq < 0 || yq >= h) continue;
+    for (int dx = -2; dx <= 2; ++dx) {
+      if (dx == 0 && dy == 0) continue;
+      const int off = dx * k.step;
+      const int x0 = std::max(0, -off), x1 = std::min(w, w - off);
+      const float kw = b3_weight(dx < 0 ? -dx : dx) * b3_weight(dy < 0 ? -dy : dy);
+      const float dist = tap_distance(dx, dy, k.step);
+      atrous_tap(depth, nx, ny, nz, lum, cr, cg, cb, var_in, phi_z, phi_l, sw, sr, sg, sb, sv, row,
+                 (yq - y) * w + off, x0, x1, dist, kw, power);
+    }
+  }
+  for (int x = 0; x < w; ++x) {
+    const int i = row + x;
+    const bool surface = g.is_surface(i);
+    k.out.color.r[i] = surface ? sr[x] / sw[x] : k.in.color.r[i];
+    k.out.color.g[i] = surface ? sg[x] / sw[x] : k.in.color.g[i];
+    k.out.color.b[i] = surface ? sb[x] / sw[x] : k.in.color.b[i];
+    k.out.variance[i] = surface ? sv[x] / (sw[x] * sw[x]) : var_in[i];
+  }
+}
+
+// --- spatial variance estimate -----------------------------------------------------------------
+
+template <class Power>
+void variance_row(const VarianceKernel& k, const float* __restrict lum, int y, RowScratch& s,
+                  const Power& power) {
+  const GuideView& g = k.guides;
+  const SvgfParams& p = k.params;
+  const int w = g.width, h = g.height, row = y * w;
+  const float young = static_cast<float>(p.spatial_variance_history);
+  bool any = false;
+  for (int x = 0; x < w; ++x)
+    any = any || (k.history[row + x] < young && g.is_surface(row + x));
+  if (!any) {  // every pixel passes through: skip the 7x7 work for this row
+    for (int x = 0; x < w; ++x) {
+      const int i = row + x;
+      k.out.color.store(i, k.accumulated.color.load(i));
+      k.out.variance[i] = k.accumulated.variance[i];
+    }
+    return;
+  }
+  float* __restrict phi_z = s.a.data();
+  float* __restrict sw = s.sw.data();
+  float* __restrict sr = s.s0.data();
+  float* __restrict sg = s.s1.data();
+  float* __restrict sb = s.s2.data();
+  float* __restrict sm1 = s.s3.data();
+  float* __restrict sm2 = s.b.data();
+  for (int x = 0; x < w; ++x) {
+    phi_z[x] = p.spatial_variance_phi_depth * max_f(g.depth_fwidth(row + x), p.depth_gradient_floor);
+    sw[x] = sr[x] = sg[x] = sb[x] = sm1[x] = sm2[x] = 0.f;
+  }
+  const float* __restrict depth = g.depth;
+  const float* __restrict nx = g.normal.r;
+  const float* __restrict ny = g.normal.g;
+  const float* __restrict nz = g.normal.b;
+  const float* __restrict cr = k.accumulated.color.r;
+  const float* __restrict cg = k.accumulated.color.g;
+  const float* __restrict cb = k.accumulated.color.b;
+  const float* __restrict m1_in = k.moment1;
+  const float* __restrict m2_in = k.moment2;
+  const float phi_color = p.phi_color;
+  const int r = p.spatial_variance_radius;
+  for (int dy = -r; dy <= r; ++dy) {
+    const int yq = y + dy;
+    if (yq < 0 || yq >= h) continue;
+    for (int dx = -r; dx <= r; ++dx) {
+      const int x0 = std::max(0, -dx), x1 = std::min(w, w - dx);
+      const float dist = tap_distance(dx, dy, 1);
+      variance_tap(depth, nx, ny, nz, lum, cr, cg, cb, m1_in, m2_in, phi_z, phi_color, sw, sr, sg,
+                   sb, sm1, sm2, row, dy * w + dx, x0, x1, dist, power);
+    }
+  }
+  for (int x = 0; x < w; ++x) {
+    const int i = row + x;
+    const float hist = k.history[i];
+    if (!(hist < young) || !g.is_surface(i)) {
+      k.out.color.store(i, k.accumulated.color.load(i));
+      k.out.variance[i] = k.accumulated.variance[i];
+      continue;
+    }
+    const float ws = max_f(sw[x], 1e-6f);
+    const float m1 = sm1[x] / ws, m2 = sm2[x] / ws;
+    k.out.color.store(i, make_vec3(sr[x] / ws, sg[x] / ws, sb[x] / ws));
+    k.out.variance[i] = max_f(0.f, m2 - m1 * m1) * (young / hist);
+  }
+}
+
+// Luminance of every pixel of `color`, once per stage instead of once per tap.
+std::vector<float> luminance_plane(ConstRgbView color, int w, int h) {
+  std::vector<float> lum(static_cast<size_t>(w) * h);
+  parallel_rows(h, [&](int y0, int y1) {
+    for (int i = y0 * w; i < y1 * w; ++i) lum[i] = luminance(color.load(i));
+  });
+  return lum;
+}
+
+}  // namespace
+
+void run_atrous_rows(const AtrousKernel& kernel, int width, int height) {
+  const std::vector<float> lum = luminance_plane(kernel.in.color, width, height);
+  with_normal_power(kernel.params.phi_normal, [&](const auto& power) {
+    parallel_rows(height, [&](int y0, int y1) {
+      RowScratch s(width);
+      for (int y = y0; y < y1; ++y) atrous_row(kernel, lum.data(), y, s, power);
+    });
+  });
+}
+
+void run_variance_rows(const VarianceKernel& kernel, int width, int height) {
+  const std::vector<float> lum = luminance_plane(kernel.accumulated.color, width, height);
+  with_normal_power(kernel.params.phi_normal, [&](const auto& power) {
+    parallel_rows(height, [&](int y0, int y1) {
+      RowScratch s(width);
+      for (int y = y0; y < y1; ++y) variance_row(kernel, lum.data(), y, s, power);
+    });
+  });
+}
+
+}  // namespace svgf::cpu
