@@ -61,9 +61,10 @@ struct AtrousKernel {
       return;
     }
     const float variance = prefiltered_variance(guides, in.variance, x, y);
-    const float phi_l = params.phi_color * sqrtf(max_f(0.f, params.variance_epsilon + variance));
-    const float phi_z = params.phi_depth *
-                        max_f(guides.depth_fwidth(i), params.depth_gradient_floor);
+    const float inv_phi_l =
+        1.f / (params.phi_color * sqrtf(max_f(0.f, params.variance_epsilon + variance)));
+    const float inv_phi_z =
+        1.f / (params.phi_depth * max_f(guides.depth_fwidth(i), params.depth_gradient_floor));
     const EdgeSample c{guides.depth[i], guides.normal.load(i), luminance(center_color)};
     const NormalPower normal_power = NormalPower::of(params.phi_normal);
 
@@ -82,8 +83,8 @@ struct AtrousKernel {
         const Vec3 cq = in.color.load(j);
         const EdgeSample q{guides.depth[j], guides.normal.load(j), luminance(cq)};
         const float k = b3_weight(dx < 0 ? -dx : dx) * b3_weight(dy < 0 ? -dy : dy);
-        const float w = edge_stopping_weight(c, q, phi_z * tap_distance(dx, dy, step),
-                                             normal_power, phi_l) * k;
+        const float w = edge_stopping_weight(c, q, inv_phi_z * inv_tap_distance(dx, dy, step),
+                                             normal_power, inv_phi_l) * k;
         weight_sum = weight_sum + w;
         color_sum += cq * w;
         variance_sum = variance_sum + in.variance[j] * (w * w);

@@ -1,6 +1,7 @@
 #pragma once
 // The joint edge-stopping weight of SVGF (Schied et al. 2017, Eq. 3-4; Falcor's computeWeight):
 //   w = exp(-|l_p - l_q| / phi_l  -  |z_p - z_q| / phi_z) * max(0, n_p . n_q)^phi_n
+// evaluated with the reciprocals 1/phi_l and 1/phi_z (the same on every backend).
 // shared by the 7x7 spatial variance estimate and the a-trous iterations.
 #include "core/det_math.h"
 #include "core/vec.h"
@@ -44,32 +45,34 @@ struct NormalPowerFixed {
   }
 };
 
-// phi_z is the depth tolerance for this tap (already scaled by gradient and distance). At the
-// centre tap phi_z = 0 and the depth difference is 0: 0/0 is NaN, which max_f drops, so the
-// centre has no depth term (Falcor's phiDepth == 0 case) without a branch, which keeps the CPU
-// row loops vectorizable. Any other tap with phi_z = 0 gets e_depth = Inf: weight 0. Bad guide
-// data (NaN) drops the term it is in or zeroes the weight; the weight is never NaN.
+// inv_phi_z and inv_phi_l are the reciprocals of the depth and luminance tolerances for this
+// tap (computed once per pixel and tap, so the tap loop has no division). At the centre tap
+// inv_phi_z is Inf and the depth difference 0: 0 * Inf is NaN, which max_f drops, so the centre
+// has no depth term (Falcor's phiDepth == 0 case) without a branch, keeping the CPU row loops
+// vectorizable. Bad guide data (NaN) drops the term it is in or zeroes the weight; the weight
+// is never NaN.
 template <class Power>
-SVGF_HD float edge_stopping_weight(const EdgeSample& c, const EdgeSample& q, float phi_z,
-                                   const Power& normal_power, float phi_l) {
+SVGF_HD float edge_stopping_weight(const EdgeSample& c, const EdgeSample& q, float inv_phi_z,
+                                   const Power& normal_power, float inv_phi_l) {
   const float w_normal = normal_power(max_f(0.f, dot(c.normal, q.normal)));
-  const float e_depth = abs_f(c.depth - q.depth) / phi_z;
-  const float e_lum = abs_f(c.luminance - q.luminance) / phi_l;
+  const float e_depth = abs_f(c.depth - q.depth) * inv_phi_z;
+  const float e_lum = abs_f(c.luminance - q.luminance) * inv_phi_l;
   // The argument is <= 0 (or -0): both terms are clamped to >= 0 first.
   const float w = det_exp_nonpositive((0.f - max_f(e_lum, 0.f)) - max_f(e_depth, 0.f)) * w_normal;
   return w > 0.f ? w : 0.f;
 }
 
-SVGF_HD float edge_stopping_weight(const EdgeSample& c, const EdgeSample& q, float phi_z,
-                                   float phi_normal, float phi_l) {
-  return edge_stopping_weight(c, q, phi_z, NormalPower::of(phi_normal), phi_l);
+SVGF_HD float edge_stopping_weight(const EdgeSample& c, const EdgeSample& q, float inv_phi_z,
+                                   float phi_normal, float inv_phi_l) {
+  return edge_stopping_weight(c, q, inv_phi_z, NormalPower::of(phi_normal), inv_phi_l);
 }
 
-// Distance in pixels of the tap (dx, dy) * step; sqrt is IEEE-exact on both sides.
-SVGF_HD float tap_distance(int dx, int dy, int step) {
+// 1 / distance in pixels of the tap (dx, dy) * step (Inf at the centre); sqrt and division
+// are IEEE-exact on both sides.
+SVGF_HD float inv_tap_distance(int dx, int dy, int step) {
   const float fx = static_cast<float>(dx * step);
   const float fy = static_cast<float>(dy * step);
-  return sqrtf(fx * fx + fy * fy);
+  return 1.f / sqrtf(fx * fx + fy * fy);
 }
 
 }  // namespace svgf

@@ -29,8 +29,9 @@ struct VarianceKernel {
       return;
     }
     const EdgeSample c{guides.depth[i], guides.normal.load(i), luminance(center_color)};
-    const float phi_z = params.spatial_variance_phi_depth *
-                        max_f(guides.depth_fwidth(i), params.depth_gradient_floor);
+    const float inv_phi_z = 1.f / (params.spatial_variance_phi_depth *
+                                   max_f(guides.depth_fwidth(i), params.depth_gradient_floor));
+    const float inv_phi_l = 1.f / params.phi_color;
     const NormalPower normal_power = NormalPower::of(params.phi_normal);
     const int r = params.spatial_variance_radius;
     float weight_sum = 0.f;
@@ -44,8 +45,8 @@ struct VarianceKernel {
         const int j = guides.index(xq, yq);
         const Vec3 cq = accumulated.color.load(j);
         const EdgeSample q{guides.depth[j], guides.normal.load(j), luminance(cq)};
-        const float w = edge_stopping_weight(c, q, phi_z * tap_distance(dx, dy, 1),
-                                             normal_power, params.phi_color);
+        const float w = edge_stopping_weight(c, q, inv_phi_z * inv_tap_distance(dx, dy, 1),
+                                             normal_power, inv_phi_l);
         weight_sum = weight_sum + w;
         color_sum += cq * w;
         moments_sum += make_vec2(moment1[j], moment2[j]) * w;

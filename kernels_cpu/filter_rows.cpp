@@ -25,15 +25,15 @@ SVGF_TAP_LOOP void atrous_tap(const float* __restrict depth, const float* __rest
                 const float* __restrict ny, const float* __restrict nz,
                 const float* __restrict lum, const float* __restrict cr,
                 const float* __restrict cg, const float* __restrict cb,
-                const float* __restrict var_in, const float* __restrict phi_z,
-                const float* __restrict phi_l, float* __restrict sw, float* __restrict sr,
+                const float* __restrict var_in, const float* __restrict inv_phi_z,
+                const float* __restrict inv_phi_l, float* __restrict sw, float* __restrict sr,
                 float* __restrict sg, float* __restrict sb, float* __restrict sv, int row,
-                int offset, int x0, int x1, float dist, float kw, const Power& power) {
+                int offset, int x0, int x1, float inv_dist, float kw, const Power& power) {
   for (int x = x0; x < x1; ++x) {
     const int i = row + x, j = row + offset + x;
     const EdgeSample c{depth[i], make_vec3(nx[i], ny[i], nz[i]), lum[i]};
     const EdgeSample q{depth[j], make_vec3(nx[j], ny[j], nz[j]), lum[j]};
-    const float wt = edge_stopping_weight(c, q, phi_z[x] * dist, power, phi_l[x]) * kw;
+    const float wt = edge_stopping_weight(c, q, inv_phi_z[x] * inv_dist, power, inv_phi_l[x]) * kw;
     sw[x] = sw[x] + wt;
     sr[x] = sr[x] + cr[j] * wt;
     sg[x] = sg[x] + cg[j] * wt;
@@ -49,15 +49,15 @@ SVGF_TAP_LOOP void variance_tap(const float* __restrict depth, const float* __re
                   const float* __restrict lum, const float* __restrict cr,
                   const float* __restrict cg, const float* __restrict cb,
                   const float* __restrict m1_in, const float* __restrict m2_in,
-                  const float* __restrict phi_z, float phi_color, float* __restrict sw,
+                  const float* __restrict inv_phi_z, float inv_phi_l, float* __restrict sw,
                   float* __restrict sr, float* __restrict sg, float* __restrict sb,
                   float* __restrict sm1, float* __restrict sm2, int row, int offset, int x0,
-                  int x1, float dist, const Power& power) {
+                  int x1, float inv_dist, const Power& power) {
   for (int x = x0; x < x1; ++x) {
     const int i = row + x, j = row + offset + x;
     const EdgeSample c{depth[i], make_vec3(nx[i], ny[i], nz[i]), lum[i]};
     const EdgeSample q{depth[j], make_vec3(nx[j], ny[j], nz[j]), lum[j]};
-    const float wt = edge_stopping_weight(c, q, phi_z[x] * dist, power, phi_color);
+    const float wt = edge_stopping_weight(c, q, inv_phi_z[x] * inv_dist, power, inv_phi_l);
     sw[x] = sw[x] + wt;
     sr[x] = sr[x] + cr[j] * wt;
     sg[x] = sg[x] + cg[j] * wt;
@@ -106,27 +106,27 @@ void atrous_row(const AtrousKernel& k, const float* __restrict lum, int y, RowSc
   const SvgfParams& p = k.params;
   const int w = g.width, h = g.height, row = y * w;
   const float* __restrict var_in = k.in.variance;
-  float* __restrict phi_l = s.a.data();
-  float* __restrict phi_z = s.b.data();
+  float* __restrict inv_phi_l = s.a.data();  // holds the prefiltered variance first
+  float* __restrict inv_phi_z = s.b.data();
   float* __restrict sw = s.sw.data();
   float* __restrict sr = s.s0.data();
   float* __restrict sg = s.s1.data();
   float* __restrict sb = s.s2.data();
   float* __restrict sv = s.s3.data();
 
-  // Centre terms: prefiltered variance (into phi_l), tolerances, the centre's own contribution.
+  // Centre terms: prefiltered variance (into inv_phi_l), reciprocal tolerances, the centre's own contribution.
   if (y > 0 && y < h - 1 && w > 2) {
-    phi_l[0] = prefiltered_variance(g, var_in, 0, y);
-    for (int x = 1; x < w - 1; ++x) phi_l[x] = prefiltered_variance_interior(var_in, w, row + x);
-    phi_l[w - 1] = prefiltered_variance(g, var_in, w - 1, y);
+    inv_phi_l[0] = prefiltered_variance(g, var_in, 0, y);
+    for (int x = 1; x < w - 1; ++x) inv_phi_l[x] = prefiltered_variance_interior(var_in, w, row + x);
+    inv_phi_l[w - 1] = prefiltered_variance(g, var_in, w - 1, y);
   } else {
-    for (int x = 0; x < w; ++x) phi_l[x] = prefiltered_variance(g, var_in, x, y);
+    for (int x = 0; x < w; ++x) inv_phi_l[x] = prefiltered_variance(g, var_in, x, y);
   }
   const float center_k = b3_weight(0) * b3_weight(0);
   for (int x = 0; x < w; ++x) {
     const int i = row + x;
-    phi_l[x] = p.phi_color * sqrtf(max_f(0.f, p.variance_epsilon + phi_l[x]));
-    phi_z[x] = p.phi_depth * max_f(g.depth_fwidth(i), p.depth_gradient_floor);
+    inv_phi_l[x] = 1.f / (p.phi_color * sqrtf(max_f(0.f, p.variance_epsilon + inv_phi_l[x])));
+    inv_phi_z[x] = 1.f / (p.phi_depth * max_f(g.depth_fwidth(i), p.depth_gradient_floor));
     sw[x] = center_k;
     sr[x] = k.in.color.r[i] * center_k;
     sg[x] = k.in.color.g[i] * center_k;
@@ -150,9 +150,9 @@ void atrous_row(const AtrousKernel& k, const float* __restrict lum, int y, RowSc
       const int off = dx * k.step;
       const int x0 = std::max(0, -off), x1 = std::min(w, w - off);
       const float kw = b3_weight(dx < 0 ? -dx : dx) * b3_weight(dy < 0 ? -dy : dy);
-      const float dist = tap_distance(dx, dy, k.step);
-      atrous_tap(depth, nx, ny, nz, lum, cr, cg, cb, var_in, phi_z, phi_l, sw, sr, sg, sb, sv, row,
-                 (yq - y) * w + off, x0, x1, dist, kw, power);
+      const float inv_dist = inv_tap_distance(dx, dy, k.step);
+      atrous_tap(depth, nx, ny, nz, lum, cr, cg, cb, var_in, inv_phi_z, inv_phi_l, sw, sr, sg, sb, sv, row,
+                 (yq - y) * w + off, x0, x1, inv_dist, kw, power);
     }
   }
   for (int x = 0; x < w; ++x) {
@@ -185,7 +185,7 @@ void variance_row(const VarianceKernel& k, const float* __restrict lum, int y, R
     }
     return;
   }
-  float* __restrict phi_z = s.a.data();
+  float* __restrict inv_phi_z = s.a.data();
   float* __restrict sw = s.sw.data();
   float* __restrict sr = s.s0.data();
   float* __restrict sg = s.s1.data();
@@ -193,7 +193,8 @@ void variance_row(const VarianceKernel& k, const float* __restrict lum, int y, R
   float* __restrict sm1 = s.s3.data();
   float* __restrict sm2 = s.b.data();
   for (int x = 0; x < w; ++x) {
-    phi_z[x] = p.spatial_variance_phi_depth * max_f(g.depth_fwidth(row + x), p.depth_gradient_floor);
+    inv_phi_z[x] = 1.f / (p.spatial_variance_phi_depth *
+                      max_f(g.depth_fwidth(row + x), p.depth_gradient_floor));
     sw[x] = sr[x] = sg[x] = sb[x] = sm1[x] = sm2[x] = 0.f;
   }
   const float* __restrict depth = g.depth;
@@ -205,16 +206,16 @@ void variance_row(const VarianceKernel& k, const float* __restrict lum, int y, R
   const float* __restrict cb = k.accumulated.color.b;
   const float* __restrict m1_in = k.moment1;
   const float* __restrict m2_in = k.moment2;
-  const float phi_color = p.phi_color;
+  const float inv_phi_l = 1.f / p.phi_color;
   const int r = p.spatial_variance_radius;
   for (int dy = -r; dy <= r; ++dy) {
     const int yq = y + dy;
     if (yq < 0 || yq >= h) continue;
     for (int dx = -r; dx <= r; ++dx) {
       const int x0 = std::max(0, -dx), x1 = std::min(w, w - dx);
-      const float dist = tap_distance(dx, dy, 1);
-      variance_tap(depth, nx, ny, nz, lum, cr, cg, cb, m1_in, m2_in, phi_z, phi_color, sw, sr, sg,
-                   sb, sm1, sm2, row, dy * w + dx, x0, x1, dist, power);
+      const float inv_dist = inv_tap_distance(dx, dy, 1);
+      variance_tap(depth, nx, ny, nz, lum, cr, cg, cb, m1_in, m2_in, inv_phi_z, inv_phi_l, sw, sr, sg,
+                   sb, sm1, sm2, row, dy * w + dx, x0, x1, inv_dist, power);
     }
   }
   for (int x = 0; x < w; ++x) {
