@@ -119,6 +119,9 @@ int denoise_command(const std::vector<std::string>& args) {
   std::fprintf(stderr, "svgf: %s: %d frames of %dx%d (%s) with %s\n", in_dir.c_str(), frames,
                sequence.manifest().width, sequence.manifest().height,
                sequence.manifest().scene.c_str(), denoiser->description().c_str());
+  std::string why_not_cuda;
+  if (config.backend == Backend::Auto && !cuda_available(&why_not_cuda))
+    std::fprintf(stderr, "svgf: --backend auto chose the CPU: %s\n", why_not_cuda.c_str());
 
   nlohmann::json report;
   report["input"] = in_dir;

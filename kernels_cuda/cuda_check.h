@@ -18,9 +18,15 @@ class CudaError : public std::runtime_error {
   cudaError_t code_;
 };
 
+// Clears the runtime's last-error slot before throwing, so a non-sticky error (a refused
+// allocation, a bad launch configuration) is not reported again by the next unrelated check.
 inline void check(cudaError_t e, const char* what) {
-  if (e != cudaSuccess) throw CudaError(what, e);
+  if (e != cudaSuccess) {
+    (void)cudaGetLastError();
+    throw CudaError(what, e);
+  }
 }
+inline void check(cudaError_t e, const std::string& what) { check(e, what.c_str()); }
 
 }  // namespace svgf::cuda
 

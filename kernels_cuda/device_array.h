@@ -2,6 +2,7 @@
 // Device memory owned RAII-style. Host-compilable (CUDA runtime API only), so tests and tools
 // written in plain C++ can stage data for single-stage runs.
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "kernels_cuda/cuda_check.h"
@@ -23,10 +24,16 @@ class DeviceArray {
     return *this;
   }
 
-  void resize(size_t n) {
+  void resize(size_t n) { resize(n, nullptr); }
+  // `what` names the buffer in the error message (e.g. out of device memory).
+  void resize(size_t n, const char* what) {
     if (n == size_) return;
     release();
-    if (n) SVGF_CUDA_CHECK(cudaMalloc(reinterpret_cast<void**>(&ptr_), n * sizeof(T)), "cudaMalloc");
+    if (n) {
+      std::string msg = "cudaMalloc of " + std::to_string(n * sizeof(T)) + " bytes";
+      if (what) msg += std::string(" for ") + what;
+      SVGF_CUDA_CHECK(cudaMalloc(reinterpret_cast<void**>(&ptr_), n * sizeof(T)), msg);
+    }
     size_ = n;
   }
   void upload(const T* host, size_t n) {
@@ -34,6 +41,15 @@ class DeviceArray {
   }
   void download(T* host, size_t n) const {
     SVGF_CUDA_CHECK(cudaMemcpy(host, ptr_, n * sizeof(T), cudaMemcpyDeviceToHost), "download");
+  }
+  // Stream-ordered copies; the host memory should be pinned for them to overlap.
+  void upload_async(const T* host, size_t n, cudaStream_t stream) {
+    SVGF_CUDA_CHECK(cudaMemcpyAsync(ptr_, host, n * sizeof(T), cudaMemcpyHostToDevice, stream),
+                    "upload");
+  }
+  void download_async(T* host, size_t n, cudaStream_t stream) const {
+    SVGF_CUDA_CHECK(cudaMemcpyAsync(host, ptr_, n * sizeof(T), cudaMemcpyDeviceToHost, stream),
+                    "download");
   }
   std::vector<T> to_host() const { std::vector<T> v(size_); download(v.data(), size_); return v; }
   T* get() const { return ptr_; }

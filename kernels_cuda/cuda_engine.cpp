@@ -1,0 +1,48 @@
+#include "kernels_cuda/cuda_engine.h"
+
+namespace svgf::cuda {
+
+CudaEngine::CudaEngine(LaunchShape shape) : shape_(shape), counter_(1) {
+  counter_host_.resize(1, "the replaced-sample count");
+}
+
+void CudaEngine::begin_frame() {
+  marks_.clear();
+  times_ = StageTimes();
+  counted_ = 0;
+  SVGF_CUDA_CHECK(
+      cudaMemsetAsync(counter_.get(), 0, sizeof(unsigned long long), stream_.get()),
+      "cudaMemsetAsync of the replaced-sample counter");
+}
+
+void CudaEngine::mark(Stage stage, const char* what) {
+  if (events_.size() <= marks_.size()) events_.emplace_back();
+  SVGF_CUDA_CHECK(cudaEventRecord(events_[marks_.size()].get(), stream_.get()),
+                  std::string("cudaEventRecord before ") + what);
+  marks_.push_back(Mark{stage, what});
+}
+
+void CudaEngine::end_frame() {
+  SVGF_CUDA_CHECK(cudaMemcpyAsync(counter_host_.get(), counter_.get(), sizeof(unsigned long long),
+                                  cudaMemcpyDeviceToHost, stream_.get()),
+                  "download of the replaced-sample count");
+  if (events_.size() <= marks_.size()) events_.emplace_back();
+  const cudaEvent_t last = events_[marks_.size()].get();
+  SVGF_CUDA_CHECK(cudaEventRecord(last, stream_.get()), "cudaEventRecord at the frame's end");
+  const cudaError_t e = cudaStreamSynchronize(stream_.get());
+  if (e != cudaSuccess) {
+    // Kernels run asynchronously: a fault is seen here, after the fact. Name them all.
+    std::string names;
+    for (const Mark& m : marks_) names += (names.empty() ? "" : ", ") + std::string(m.what);
+    check(e, "executing the frame's kernels (" + names + ")");
+  }
+  for (size_t i = 0; i < marks_.size(); ++i) {
+    float ms = 0.f;
+    SVGF_CUDA_CHECK(cudaEventElapsedTime(&ms, events_[i].get(), events_[i + 1].get()),
+                    "cudaEventElapsedTime");
+    times_[marks_[i].stage] += static_cast<double>(ms);
+  }
+  counted_ = static_cast<int64_t>(*counter_host_.get());
+}
+
+}  // namespace svgf::cuda

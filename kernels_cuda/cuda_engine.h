@@ -1,0 +1,59 @@
+#pragma once
+// Engine for core/svgf_pipeline.h on the GPU: every stage is a launch on the denoiser's stream,
+// bracketed by CUDA events for the per-stage times. Nothing waits until end_frame(), which
+// synchronizes once, reads the times and the replaced-sample count, and raises any fault of the
+// frame's kernels as a CudaError naming them. Host-compilable.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/stage_times.h"
+#include "kernels_cuda/cuda_handles.h"
+#include "kernels_cuda/device_array.h"
+#include "kernels_cuda/exact_launch.h"
+
+namespace svgf::cuda {
+
+class CudaEngine {
+ public:
+  explicit CudaEngine(LaunchShape shape);
+
+  template <class Kernel>
+  void run(Stage stage, const Kernel& kernel, int width, int height) {
+    mark(stage, kernel_name(kernel));
+    launch(kernel, width, height, shape_, stream_.get());
+  }
+  template <class Kernel>
+  void run_counting(Stage stage, const Kernel& kernel, int width, int height) {
+    mark(stage, kernel_name(kernel));
+    launch(kernel, width, height, shape_, stream_.get(), counter_.get());
+  }
+
+  // Per-frame bookkeeping. begin_frame() zeroes the counter; mark() records an event: the work
+  // enqueued from here to the next mark is `stage`, named `what` in errors.
+  void begin_frame();
+  void mark(Stage stage, const char* what);
+  void end_frame();
+
+  cudaStream_t stream() const { return stream_.get(); }
+  LaunchShape shape() const { return shape_; }
+  unsigned long long* counter() const { return counter_.get(); }  // device memory
+  const StageTimes& times() const { return times_; }
+  int64_t counted() const { return counted_; }
+
+ private:
+  struct Mark {
+    Stage stage;
+    const char* what;
+  };
+  LaunchShape shape_;
+  Stream stream_;
+  DeviceArray<unsigned long long> counter_;
+  PinnedBuffer<unsigned long long> counter_host_;
+  std::vector<Event> events_;  // grows to the most marks a frame has needed
+  std::vector<Mark> marks_;
+  StageTimes times_;
+  int64_t counted_ = 0;
+};
+
+}  // namespace svgf::cuda

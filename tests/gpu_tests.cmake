@@ -1,0 +1,12 @@
+# svgf_gpu_tests: CPU vs CUDA (exact: bitwise; fast: within tolerance), determinism and error
+# tests. A plain executable with its own main (not catch_discover_tests: ctest must see one test
+# that reports "skipped" (exit 77) on a machine without a CUDA device, never "passed").
+if(TARGET svgf_cuda)
+  add_executable(svgf_gpu_tests gpu_test_main.cpp gpu_test.cpp gpu_test_pipeline.cpp)
+  target_link_libraries(svgf_gpu_tests PRIVATE
+    Catch2::Catch2 svgf_core svgf_cpu svgf_pipeline svgf_cuda svgf_io svgf_metrics)
+  target_include_directories(svgf_gpu_tests PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
+  target_compile_definitions(svgf_gpu_tests PRIVATE SVGF_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+  add_test(NAME svgf_gpu_tests COMMAND svgf_gpu_tests)
+  set_tests_properties(svgf_gpu_tests PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 900)
+endif()

@@ -1,0 +1,404 @@
+#pragma once
+// Shared pieces of the OpenCV cross-checks (docs/opencv-checks.md): Image <-> cv::Mat
+// conversion, a per-pixel comparison that tallies edge and interior pixels separately, seeded
+// random guides, and the backend runners that put one stage kernel on the CPU or on the GPU.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <random>
+#include <sstream>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include <catch2/catch.hpp>
+#include <opencv2/core.hpp>
+
+#include "core/atrous.h"
+#include "core/denoiser.h"
+#include "core/frame.h"
+#include "core/image.h"
+#include "core/variance.h"
+#include "core/views.h"
+#include "io/sequence.h"
+#include "kernels_cpu/filter_rows.h"
+#include "kernels_cpu/parallel_for.h"
+#include "opencv_probe.h"
+#if defined(SVGF_HAVE_CUDA)
+#include "kernels_cuda/device_array.h"
+#include "kernels_cuda/stage_runner.h"
+#include "kernels_cuda/svgf_cuda.h"
+#endif
+
+namespace svgf::cvtest {
+
+// Unit roundoff of float with round-to-nearest: every tolerance is a count of these.
+constexpr double kU = 1.0 / 16777216.0;  // 2^-24
+
+// Image sizes every backend check runs on: odd, even, tiny (wider kernels than the image) and
+// the 257x89.
+struct Size2 {
+  int w, h;
+};
+inline const std::vector<Size2>& check_sizes() {
+  static const std::vector<Size2> sizes = {{257, 89}, {64, 48}, {31, 17}, {7, 5}};
+  return sizes;
+}
+
+// ---------------------------------------------------------------- Image <-> cv::Mat
+
+// Channel c as a CV_64F matrix (float -> double is exact, so OpenCV then works in double).
+inline cv::Mat plane_mat(const Image& im, int c) {
+  cv::Mat m(im.height(), im.width(), CV_64F);
+  for (int y = 0; y < im.height(); ++y)
+    for (int x = 0; x < im.width(); ++x) m.at<double>(y, x) = im.at(x, y, c);
+  return m;
+}
+
+// Channels first..first+2 interleaved, in R, G, B order (not OpenCV's BGR: no cv function used
+// here cares about the order except cv::transform, whose coefficients are given in R, G, B).
+inline cv::Mat rgb_mat(const Image& im, int first = 0, int depth = CV_64F) {
+  cv::Mat m(im.height(), im.width(), CV_64FC3);
+  for (int y = 0; y < im.height(); ++y)
+    for (int x = 0; x < im.width(); ++x)
+      m.at<cv::Vec3d>(y, x) = cv::Vec3d(im.at(x, y, first), im.at(x, y, first + 1),
+                                        im.at(x, y, first + 2));
+  if (depth == CV_64F) return m;
+  cv::Mat out;
+  m.convertTo(out, depth);
+  return out;
+}
+
+// ---------------------------------------------------------------- comparison
+
+// Compares computed values with OpenCV's pixel by pixel, each against its own tolerance.
+// Pixels within `border` of an image edge (where some taps fall outside) count as edge pixels,
+// the rest as interior, so a test can show it exercised both.
+class PlaneCheck {
+ public:
+  struct Tally {
+    size_t count = 0;
+    double max_error = 0;   // largest |got - want|
+    double max_ratio = 0;   // largest |got - want| / tolerance
+  };
+
+  PlaneCheck(std::string what, int width, int height, int border)
+      : what_(std::move(what)), w_(width), h_(height), border_(border) {}
+
+  void add(int x, int y, int c, double got, double want, double tol) {
+    const double err = std::fabs(got - want);
+    const bool edge = x < border_ || y < border_ || x >= w_ - border_ || y >= h_ - border_;
+    Tally& t = edge ? edge_ : interior_;
+    ++t.count;
+    if (!(err <= tol)) {  // NaN fails too
+      if (bad_ < 5)
+        first_bad_ << "\n    (" << x << "," << y << ") ch " << c << ": got " << got << " want "
+                   << want << " |diff| " << err << " tol " << tol;
+      ++bad_;
+    }
+    t.max_error = std::max(t.max_error, err);
+    if (tol > 0) t.max_ratio = std::max(t.max_ratio, err / tol);
+  }
+  void skip() { ++skipped_; }
+
+  const Tally& edge() const { return edge_; }
+  const Tally& interior() const { return interior_; }
+  size_t bad() const { return bad_; }
+
+  std::string summary() const {
+    std::ostringstream s;
+    s << what_ << " " << w_ << "x" << h_ << ": " << edge_.count << " edge values (max err "
+      << edge_.max_error << ", " << edge_.max_ratio << " of tol), " << interior_.count
+      << " interior (max err " << interior_.max_error << ", " << interior_.max_ratio
+      << " of tol)";
+    if (skipped_) s << ", " << skipped_ << " skipped";
+    if (bad_) s << "; " << bad_ << " OUTSIDE tolerance:" << first_bad_.str();
+    return s.str();
+  }
+
+  void require() const {
+    INFO(summary());
+    REQUIRE(bad_ == 0);
+  }
+
+ private:
+  std::string what_;
+  int w_, h_, border_;
+  Tally edge_, interior_;
+  size_t bad_ = 0, skipped_ = 0;
+  std::ostringstream first_bad_;
+};
+
+// Edge and interior pixels compared over a whole test (over all sizes): both must be non-zero.
+struct Coverage {
+  size_t edge = 0, interior = 0;
+  double worst_ratio = 0;  // largest error / tolerance seen
+  void add(const PlaneCheck& c) {
+    edge += c.edge().count;
+    interior += c.interior().count;
+    worst_ratio = std::max({worst_ratio, c.edge().max_ratio, c.interior().max_ratio});
+  }
+  void require() const {
+    INFO("compared " << edge << " edge and " << interior << " interior values; worst error "
+                     << worst_ratio << " of its tolerance");
+    REQUIRE(edge > 0);
+    REQUIRE(interior > 0);
+  }
+};
+
+// ---------------------------------------------------------------- data
+
+inline std::vector<float> uniform_values(size_t n, float lo, float hi, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> d(lo, hi);
+  std::vector<float> v(n);
+  for (float& x : v) x = d(rng);
+  return v;
+}
+
+inline void fill_uniform(Image& im, float lo, float hi, uint32_t seed) {
+  im.data() = uniform_values(im.data().size(), lo, hi, seed);
+}
+
+// A frame with random guides: depth in [1, 5] (a surface everywhere), unit normals within 10
+// degrees of +z, random depth gradients and mesh ids, zero motion; color and albedo random.
+inline Frame random_frame(int w, int h, uint32_t seed) {
+  Frame f;
+  f.allocate(w, h);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u01(0.f, 1.f);
+  for (size_t i = 0; i < f.color.pixel_count(); ++i) {
+    f.depth.plane(0)[i] = 1.f + 4.f * u01(rng);
+    f.depth_gradient.plane(0)[i] = 0.2f * (u01(rng) - 0.5f);
+    f.depth_gradient.plane(1)[i] = 0.2f * (u01(rng) - 0.5f);
+    const float nx = 0.17f * (u01(rng) - 0.5f), ny = 0.17f * (u01(rng) - 0.5f);
+    const float len = std::sqrt(nx * nx + ny * ny + 1.f);
+    f.normal.plane(0)[i] = nx / len;
+    f.normal.plane(1)[i] = ny / len;
+    f.normal.plane(2)[i] = 1.f / len;
+    f.mesh_id[i] = 1u + static_cast<uint32_t>(u01(rng) * 3.f);
+    for (int c = 0; c < 3; ++c) {
+      f.color.plane(c)[i] = 0.05f + 3.f * u01(rng);
+      f.albedo.plane(c)[i] = 0.1f + 0.9f * u01(rng);
+    }
+  }
+  return f;
+}
+
+// Random guides that pass every reprojection test between this frame and itself (or a copy):
+// one mesh, depth within 2.5% (the tolerance is 3%), normals within 14 degrees of each other
+// (cos >= 0.97 > 0.9).
+inline Frame consistent_frame(int w, int h, uint32_t seed) {
+  Frame f = random_frame(w, h, seed);
+  const std::vector<float> depth = uniform_values(f.color.pixel_count(), 2.f, 2.05f, seed + 7);
+  std::copy(depth.begin(), depth.end(), f.depth.plane(0));
+  std::fill(f.mesh_id.begin(), f.mesh_id.end(), 1u);
+  return f;
+}
+
+// The committed fixture sequences: folders under fixtures/ holding a manifest.json. Hidden
+// folders and io::SequenceWriter's "<name>.tmp-<pid>" ones (being written) are not counted.
+struct FixtureScan {
+  std::string root;
+  int folders = 0;                     // candidate sequence folders
+  std::vector<std::string> sequences;  // those with a manifest, sorted
+};
+inline FixtureScan scan_fixtures() {
+  namespace fs = std::filesystem;
+  FixtureScan scan;
+  const fs::path root = fs::path(SVGF_SOURCE_DIR) / "fixtures";
+  scan.root = root.string();
+  if (!fs::is_directory(root)) return scan;
+  for (const auto& e : fs::directory_iterator(root)) {
+    const std::string name = e.path().filename().string();
+    if (!e.is_directory() || name.empty() || name[0] == '.' ||
+        name.find(".tmp-") != std::string::npos)
+      continue;
+    ++scan.folders;
+    if (fs::exists(e.path() / "manifest.json")) scan.sequences.push_back(e.path().string());
+  }
+  std::sort(scan.sequences.begin(), scan.sequences.end());
+  return scan;
+}
+
+// First frame of every fixture sequence, color made finite and non-negative (the pipeline's
+// own bad-sample rule), for the checks that run on fixture images as well as random ones.
+// Empty until fixtures exist; a broken fixture throws.
+inline const std::vector<Frame>& fixture_frames() {
+  static const std::vector<Frame> frames = [] {
+    std::vector<Frame> out;
+    for (const std::string& dir : scan_fixtures().sequences) {
+      const io::Sequence seq(dir);
+      if (seq.size() == 0) continue;
+      out.push_back(seq.read(0));
+      for (float& v : out.back().color.data())
+        if (!(v >= 0.f && std::isfinite(v))) v = 0.f;
+    }
+    return out;
+  }();
+  return frames;
+}
+
+// ---------------------------------------------------------------- backends
+
+// Stage checks take the project's own backend enum (core/denoiser.h): Cpu or Cuda.
+inline const char* backend_name(Backend b) { return to_string(b); }
+
+// The CPU always runs. The CUDA variant runs when the binary has the backend and a device is
+// present; otherwise it prints a line that the ctest entry svgf_opencv_tests:cuda matches as
+// a skip (SKIP_REGULAR_EXPRESSION), so a missing GPU shows as Skipped, never as a pass.
+inline bool backend_ready_or_skip(Backend b) {
+  if (b == Backend::Cpu) return true;
+  std::string why;
+#if defined(SVGF_HAVE_CUDA)
+  if (cuda::device_available(&why)) return true;
+#else
+  why = "this test binary was built without the CUDA backend (target svgf_cuda absent)";
+#endif
+  WARN("SKIPPED: CUDA variant not run: " << why);
+  return false;
+}
+
+// How a wide stage is driven: the per-pixel kernel (cpu::for_each_pixel, or the CUDA launch) or
+// the CPU engine's row drivers. The CPU variant of a check runs both, the CUDA variant the one.
+enum class Driver { PerPixel, Rows };
+inline std::vector<Driver> drivers(Backend b) {
+  if (b == Backend::Cpu) return {Driver::PerPixel, Driver::Rows};
+  return {Driver::PerPixel};
+}
+inline std::string driver_name(Backend b, Driver d) {
+  return std::string(to_string(b)) + (d == Driver::Rows ? " rows" : "");
+}
+
+#if defined(SVGF_HAVE_CUDA)
+template <class Kernel>
+void launch_cuda(const Kernel& k, int w, int h) {
+  cuda::run(k, w, h);
+}
+inline void launch_cuda(const PrefilterProbe& k, int w, int h) { run_probe_cuda(k, w, h); }
+#endif
+
+// Where one stage's buffers live: host memory for the CPU, device copies for CUDA. Map every
+// host image the kernel reads or writes (mapping uploads its current contents), build the kernel
+// from the mapped pointers, run() it, then fetch() each output back into its host image.
+class StageRunner {
+ public:
+  explicit StageRunner(Backend b) : backend_(b) {}
+  StageRunner(const StageRunner&) = delete;
+  StageRunner& operator=(const StageRunner&) = delete;
+
+  Backend backend() const { return backend_; }
+
+  // Channel c of `im` on the backend (the planes of an Image are contiguous).
+  float* plane(Image& im, int c = 0) {
+    return map(im.data().data(), im.data().size()) + c * im.pixel_count();
+  }
+  const float* plane(const Image& im, int c = 0) {
+    return map(im.data().data(), im.data().size()) + c * im.pixel_count();
+  }
+  RgbView rgb(Image& im, int first = 0) {
+    return {plane(im, first), plane(im, first + 1), plane(im, first + 2)};
+  }
+  ConstRgbView rgb(const Image& im, int first = 0) {
+    return {plane(im, first), plane(im, first + 1), plane(im, first + 2)};
+  }
+  // Channels 0-2 color, 3 variance.
+  IllumVarView illum_var(Image& im) { return {rgb(im), plane(im, 3)}; }
+  ConstIllumVarView illum_var(const Image& im) { return {rgb(im), plane(im, 3)}; }
+
+  GuideView guides(const Frame& f) {
+    GuideView g;
+    g.width = f.width();
+    g.height = f.height();
+    g.depth = plane(f.depth);
+    g.depth_dx = plane(f.depth_gradient, 0);
+    g.depth_dy = plane(f.depth_gradient, 1);
+    g.normal = rgb(f.normal);
+    g.mesh_id = map(f.mesh_id.data(), f.mesh_id.size());
+    g.motion_x = plane(f.motion, 0);
+    g.motion_y = plane(f.motion, 1);
+    return g;
+  }
+
+  template <class Kernel>
+  void run(const Kernel& kernel, int w, int h) {
+    if (backend_ == Backend::Cpu) {
+      cpu::for_each_pixel(w, h, kernel);
+      return;
+    }
+#if defined(SVGF_HAVE_CUDA)
+    launch_cuda(kernel, w, h);
+#else
+    FAIL("CUDA stage run in a build without the CUDA backend");
+#endif
+  }
+
+  // The CPU engine runs the two wide stages through its row-vectorized drivers
+  // (kernels_cpu/filter_rows.h), not the per-pixel loop: checks of those stages run both.
+  // On CUDA this is run().
+  void run_rows(const AtrousKernel& kernel, int w, int h) {
+    if (backend_ == Backend::Cpu) cpu::run_atrous_rows(kernel, w, h);
+    else run(kernel, w, h);
+  }
+  void run_rows(const VarianceKernel& kernel, int w, int h) {
+    if (backend_ == Backend::Cpu) cpu::run_variance_rows(kernel, w, h);
+    else run(kernel, w, h);
+  }
+
+  // Copies an output back to the host (nothing to do on the CPU).
+  void fetch(Image& im) {
+#if defined(SVGF_HAVE_CUDA)
+    if (backend_ == Backend::Cuda) {
+      const auto it = floats_.find(im.data().data());
+      REQUIRE(it != floats_.end());
+      it->second.download(im.data().data(), im.data().size());
+    }
+#else
+    (void)im;
+#endif
+  }
+
+ private:
+  // The backend's copy of a host buffer: the buffer itself on the CPU; on CUDA a device array,
+  // uploaded on first use and reused after.
+  template <class T>
+  T* map(T* host, size_t n) {
+#if defined(SVGF_HAVE_CUDA)
+    if (backend_ == Backend::Cuda) {
+      using U = std::remove_const_t<T>;
+      auto& store = storage(static_cast<U*>(nullptr));
+      auto it = store.find(host);
+      if (it == store.end()) it = store.emplace(host, cuda::DeviceArray<U>(host, n)).first;
+      return it->second.get();
+    }
+#endif
+    (void)n;
+    return host;
+  }
+#if defined(SVGF_HAVE_CUDA)
+  std::map<const void*, cuda::DeviceArray<float>>& storage(float*) { return floats_; }
+  std::map<const void*, cuda::DeviceArray<uint32_t>>& storage(uint32_t*) { return ids_; }
+#endif
+
+  Backend backend_;
+#if defined(SVGF_HAVE_CUDA)
+  std::map<const void*, cuda::DeviceArray<float>> floats_;
+  std::map<const void*, cuda::DeviceArray<uint32_t>> ids_;
+#endif
+};
+
+}  // namespace svgf::cvtest
+
+// Registers a check written as `void f(Backend)` twice. The CPU variant is discovered by ctest
+// one test case at a time; the CUDA variant is hidden ([.cuda]) and runs through the single
+// ctest entry svgf_opencv_tests:cuda, or by hand: svgf_opencv_tests "[cuda]".
+#define SVGF_OPENCV_CHECK(name, tags, function)                           \
+  TEST_CASE(name " - cpu", "[opencv][cpu]" tags) {                        \
+    function(::svgf::Backend::Cpu);                                       \
+  }                                                                       \
+  TEST_CASE(name " - cuda", "[opencv][.cuda]" tags) {                     \
+    if (::svgf::cvtest::backend_ready_or_skip(::svgf::Backend::Cuda))     \
+      function(::svgf::Backend::Cuda);                                    \
+  }

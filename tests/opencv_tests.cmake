@@ -1,0 +1,32 @@
+# OpenCV cross-checks (docs/opencv-checks.md): OpenCV as the independent check on every stage.
+find_package(OpenCV REQUIRED COMPONENTS core imgproc quality ximgproc)
+
+set(svgf_opencv_sources
+  opencv_atrous_test.cpp
+  opencv_reprojection_test.cpp
+  opencv_moments_test.cpp
+  opencv_metrics_test.cpp
+  opencv_pipeline_test.cpp)
+# The CUDA variants need the backend's stage runner plus one probe kernel of our own.
+if(TARGET svgf_cuda)
+  list(APPEND svgf_opencv_sources opencv_cuda_probe.cu)
+endif()
+
+svgf_add_tests(svgf_opencv_tests
+  SOURCES ${svgf_opencv_sources}
+  LIBS svgf_pipeline svgf_metrics svgf_io ${OpenCV_LIBS})
+
+if(TARGET svgf_cuda)
+  # svgf_cuda brings the CUDA runtime (static, as the backend links it) and its headers.
+  target_link_libraries(svgf_opencv_tests PRIVATE svgf_cuda)
+  target_compile_definitions(svgf_opencv_tests PRIVATE SVGF_HAVE_CUDA=1)
+  # The probe rounds like the backend's exact kernels (kernels_cuda/CMakeLists.txt).
+  set_source_files_properties(opencv_cuda_probe.cu PROPERTIES COMPILE_OPTIONS
+    "-fmad=false;-prec-div=true;-prec-sqrt=true;-ftz=false;-Xcompiler=-Wall,-Wextra")
+endif()
+
+# The CUDA variants are hidden from test discovery ([.cuda]) and run here as one entry, so that a
+# machine without a GPU reports this entry as Skipped rather than passing it silently.
+add_test(NAME svgf_opencv_tests:cuda COMMAND svgf_opencv_tests "[cuda]")
+set_tests_properties(svgf_opencv_tests:cuda PROPERTIES
+  SKIP_REGULAR_EXPRESSION "SKIPPED: CUDA variant not run")
