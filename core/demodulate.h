@@ -1,7 +1,9 @@
 #pragma once
-// Stage 1: demodulate. Divides the albedo out of the noisy color so that the filters smooth
-// illumination only and texture detail survives (paper Sec. 4). Also the gate that keeps bad
-// samples out of the history: see sanitize_radiance.
+// Stage 1: demodulate. Takes the emitted part out of the noisy color and divides the albedo
+// out of the rest, so that the filters smooth reflected illumination only: texture detail
+// survives (paper Sec. 4), and light sources, which are noise-free and far brighter than what
+// surrounds them, are not spread onto their neighbours (Falcor's SVGF does the same). Also the
+// gate that keeps bad samples out of the history: see sanitize_radiance.
 #include "core/hd.h"
 #include "core/params.h"
 #include "core/views.h"
@@ -20,10 +22,17 @@ SVGF_HD float sanitize_radiance(float v, bool& replaced) {
 // Albedo clamped from below (NaN albedo clamps too, since max_f drops NaN).
 SVGF_HD Vec3 guarded_albedo(Vec3 albedo, float epsilon) { return max_v(albedo, epsilon); }
 
+// Reflected illumination: (color - emission) / albedo. Color is already sanitized; the
+// difference is clamped at 0 because rounding in the renderer may leave it a hair negative.
+SVGF_HD Vec3 demodulated(Vec3 color, Vec3 emission, Vec3 albedo, float albedo_epsilon) {
+  return max_v(color - emission, 0.f) / guarded_albedo(albedo, albedo_epsilon);
+}
+
 struct DemodulateKernel {
   int width = 0;
   ConstRgbView color;
   ConstRgbView albedo;
+  ConstRgbView emission;  // optional: no planes means no emitters
   RgbView illumination;
   float albedo_epsilon = 1e-3f;
 
@@ -34,7 +43,7 @@ struct DemodulateKernel {
     const Vec3 c = make_vec3(sanitize_radiance(color.r[i], replaced),
                              sanitize_radiance(color.g[i], replaced),
                              sanitize_radiance(color.b[i], replaced));
-    illumination.store(i, c / guarded_albedo(albedo.load(i), albedo_epsilon));
+    illumination.store(i, demodulated(c, emission.load_or_zero(i), albedo.load(i), albedo_epsilon));
     return replaced;
   }
 };

@@ -29,6 +29,7 @@ struct Frame {
   Image depth_gradient;    // 2: d depth/dx, d depth/dy in depth units per pixel
   Image motion;            // 2: pixels to the previous frame: prev = (x, y) + motion
   std::vector<uint32_t> mesh_id;  // object id at the primary hit; 0 on background
+  Image emission;          // 3, optional: radiance emitted at the primary hit (part of color)
   Image reference;         // 3, optional: converged radiance for quality measurement
   Image direct;            // 3, optional: direct illumination of `color`
   Image indirect;          // 3, optional: indirect illumination of `color`
@@ -86,6 +87,7 @@ inline void check_frame_consistent(const Frame& f) {
   check(f.depth, "depth", 1, false);
   check(f.depth_gradient, "depth_gradient", 2, false);
   check(f.motion, "motion", 2, false);
+  check(f.emission, "emission", 3, true);
   check(f.reference, "reference", 3, true);
   check(f.direct, "direct", 3, true);
   check(f.indirect, "indirect", 3, true);

@@ -23,6 +23,7 @@ struct SvgfFrameBuffers {
   GuideView prev_guides;  // the previous frame's, kept by the denoiser
   ConstRgbView color;
   ConstRgbView albedo;
+  ConstRgbView emission;  // optional (no planes: no emitters in view)
   // History read (left by the previous frame) and written (for the next).
   ConstRgbView prev_color;
   const float* prev_moment1 = nullptr;
@@ -46,10 +47,10 @@ void run_svgf_frame(Engine& engine, const SvgfFrameBuffers& b, const SvgfParams&
   const int w = b.guides.width;
   const int h = b.guides.height;
 
-  // 1. color / albedo -> illumination (bad samples replaced and counted).
-  engine.run_counting(Stage::Demodulate,
-                      DemodulateKernel{w, b.color, b.albedo, b.illumination, p.albedo_epsilon},
-                      w, h);
+  // 1. (color - emission) / albedo -> illumination (bad samples replaced and counted).
+  engine.run_counting(
+      Stage::Demodulate,
+      DemodulateKernel{w, b.color, b.albedo, b.emission, b.illumination, p.albedo_epsilon}, w, h);
 
   // 2. illumination + history -> accumulated color, moments and history length.
   ReprojectKernel reproject;
@@ -92,9 +93,9 @@ void run_svgf_frame(Engine& engine, const SvgfFrameBuffers& b, const SvgfParams&
   if (!fed_back)  // no feedback tap in range: the unfiltered accumulation is the history
     engine.run(Stage::Feedback, CopyRgbKernel{w, b.accumulated.color, b.next_color}, w, h);
 
-  // 5. filtered illumination * albedo -> output.
+  // 5. filtered illumination * albedo + emission -> output.
   engine.run(Stage::Remodulate,
-             RemodulateKernel{w, b.filtered[current].color, b.albedo, b.output,
+             RemodulateKernel{w, b.filtered[current].color, b.albedo, b.emission, b.output,
                               p.albedo_epsilon},
              w, h);
 }

@@ -24,6 +24,8 @@ struct Rgb {
   SVGF_HD Rgb(const Rgb<U>& o) : r(o.r), g(o.g), b(o.b) {}
   SVGF_HD Vec3 load(int i) const { return make_vec3(r[i], g[i], b[i]); }
   SVGF_HD void store(int i, Vec3 v) const { r[i] = v.x; g[i] = v.y; b[i] = v.z; }
+  // For optional inputs: a view without planes reads as 0.
+  SVGF_HD Vec3 load_or_zero(int i) const { return r ? load(i) : Vec3(); }
 };
 using RgbView = Rgb<float>;
 using ConstRgbView = Rgb<const float>;

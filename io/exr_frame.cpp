@@ -255,6 +255,7 @@ void write_frame(const std::string& path, const Frame& frame, const FrameStorage
   w.add_group(channel::kDepthGradient, frame.depth_gradient, storage.depth);
   w.add_group(channel::kMotion, frame.motion, storage.motion);
   w.add_uint(channel::kMeshId, frame.mesh_id.data());
+  if (!frame.emission.empty()) w.add_group(channel::kEmission, frame.emission, storage.color);
   if (!frame.reference.empty())
     w.add_group(channel::kReference, frame.reference, storage.reference);
   if (!frame.direct.empty()) w.add_group(channel::kDirect, frame.direct, storage.color);
@@ -290,6 +291,7 @@ Frame detail::read_frame(const std::string& path, bool* has_index) {
     f.motion = r.read_group(channel::kMotion, false);
     f.mesh_id.assign(static_cast<size_t>(w) * h, 0u);
     r.bind_uint(channel::kMeshId, f.mesh_id.data());
+    f.emission = r.read_group(channel::kEmission, true);
     f.reference = r.read_group(channel::kReference, true);
     f.direct = r.read_group(channel::kDirect, true);
     f.indirect = r.read_group(channel::kIndirect, true);

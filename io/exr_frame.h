@@ -12,7 +12,7 @@ enum class PixelStorage { Half, Float };
 // How each channel group is stored on disk. The reader accepts HALF or FLOAT for every float
 // channel (it converts to float); mesh_id is always UINT.
 struct FrameStorage {
-  PixelStorage color = PixelStorage::Float;      // color, direct, indirect
+  PixelStorage color = PixelStorage::Float;      // color, emission, direct, indirect
   PixelStorage reference = PixelStorage::Float;  // reference
   PixelStorage albedo = PixelStorage::Half;
   PixelStorage normal = PixelStorage::Half;
@@ -31,6 +31,7 @@ inline constexpr const char* kDepth = "depth.Z";
 inline constexpr const char* kDepthGradient[2] = {"depth_gradient.X", "depth_gradient.Y"};
 inline constexpr const char* kMotion[2] = {"motion.X", "motion.Y"};
 inline constexpr const char* kMeshId = "mesh_id";
+inline constexpr const char* kEmission[3] = {"emission.R", "emission.G", "emission.B"};
 inline constexpr const char* kReference[3] = {"reference.R", "reference.G", "reference.B"};
 inline constexpr const char* kDirect[3] = {"direct.R", "direct.G", "direct.B"};
 inline constexpr const char* kIndirect[3] = {"indirect.R", "indirect.G", "indirect.B"};

@@ -29,6 +29,7 @@ class SvgfCpuDenoiser final : public Denoiser {
     b.prev_guides = prev_guides_.view(width_, height_);
     b.color = in.color.rgb();
     b.albedo = in.albedo.rgb();
+    if (!in.emission.empty()) b.emission = in.emission.rgb();
     b.prev_color = color_history_[prev].rgb();
     b.prev_moment1 = moments_[prev].plane(0);
     b.prev_moment2 = moments_[prev].plane(1);

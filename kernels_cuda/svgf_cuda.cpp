@@ -17,7 +17,8 @@
 namespace svgf::cuda {
 namespace {
 
-// Planes of one frame's upload, in order; mesh_id travels as raw 32-bit words in the last one.
+// Planes of one frame's upload, in order; mesh_id travels as raw 32-bit words. The optional
+// emission comes last, so a frame without it uploads kRequiredPlanes only.
 enum InputPlane : int {
   kColor = 0,     // 3
   kAlbedo = 3,    // 3
@@ -28,7 +29,9 @@ enum InputPlane : int {
   kMotionX = 12,
   kMotionY = 13,
   kMeshId = 14,
-  kInputPlanes = 15
+  kRequiredPlanes = 15,
+  kEmission = 15,  // 3, optional
+  kInputPlanes = 18
 };
 
 class SvgfCudaDenoiser final : public Denoiser {
@@ -62,8 +65,12 @@ class SvgfCudaDenoiser final : public Denoiser {
     stage(in.motion.plane(0), kMotionX);
     stage(in.motion.plane(1), kMotionY);
     std::memcpy(staging + kMeshId * n, in.mesh_id.data(), n * sizeof(uint32_t));
+    const bool emission = !in.emission.empty();
+    if (emission)
+      for (int c = 0; c < 3; ++c) stage(in.emission.plane(c), kEmission + c);
     engine_.mark(Stage::Upload, "upload");
-    inputs_[cur].upload_async(staging, kInputPlanes * n, engine_.stream());
+    inputs_[cur].upload_async(staging, (emission ? kInputPlanes : kRequiredPlanes) * n,
+                              engine_.stream());
 
     const int prev = slot_;
     const int next = 1 - slot_;
@@ -72,6 +79,7 @@ class SvgfCudaDenoiser final : public Denoiser {
     b.prev_guides = guides(1 - cur);
     b.color = rgb(inputs_[cur], kColor);
     b.albedo = rgb(inputs_[cur], kAlbedo);
+    if (emission) b.emission = rgb(inputs_[cur], kEmission);
     b.prev_color = rgb(color_history_[prev], 0);
     b.prev_moment1 = moments_[prev].get();
     b.prev_moment2 = moments_[prev].get() + n;

@@ -13,6 +13,7 @@
 
 #include "core/copy.h"
 #include "core/demodulate.h"
+#include "core/remodulate.h"
 #include "core/reproject.h"
 #include "kernels_cuda/exact_launch.h"
 #include "kernels_cuda/launch_config.h"
@@ -164,6 +165,7 @@ struct AtrousArgs {
   float4* out = nullptr;  // null on the last iteration: only the remodulated output is needed
   RgbView feedback;       // r null: this iteration is not the feedback tap
   ConstRgbView albedo;    // with `output`: remodulate (last iteration)
+  ConstRgbView emission;  // optional, added back by the remodulation
   RgbView output;         // r null: not the last iteration
   float albedo_epsilon = 1e-3f;
   float phi_color = 10.f;
@@ -176,10 +178,9 @@ struct AtrousArgs {
 __device__ __forceinline__ void finish_pixel(const AtrousArgs& a, int i, float4 v) {
   if (a.out) a.out[i] = v;
   if (a.feedback.r) a.feedback.store(i, make_vec3(v.x, v.y, v.z));
-  if (a.output.r) {
-    const Vec3 albedo = guarded_albedo(a.albedo.load(i), a.albedo_epsilon);
-    a.output.store(i, make_vec3(v.x * albedo.x, v.y * albedo.y, v.z * albedo.z));
-  }
+  if (a.output.r)
+    a.output.store(i, remodulated(make_vec3(v.x, v.y, v.z), a.albedo.load(i),
+                                  a.emission.load_or_zero(i), a.albedo_epsilon));
 }
 
 // 1 / sqrt(dx^2 + dy^2) for the 5x5 taps: compile-time constants once the tap loop is unrolled
@@ -324,7 +325,7 @@ void run_frame(CudaEngine& engine, const SvgfFrameBuffers& b, const FastBuffers&
   reproject.params = p;
   engine.mark(Stage::Demodulate, "demodulate+reproject");
   launch_demodulate_reproject(
-      DemodulateKernel{w, b.color, b.albedo, b.illumination, p.albedo_epsilon}, reproject,
+      DemodulateKernel{w, b.color, b.albedo, b.emission, b.illumination, p.albedo_epsilon}, reproject,
       f.guides, engine.shape(), stream, engine.counter());
 
   // 2. variance -> packed[0].
@@ -357,6 +358,7 @@ void run_frame(CudaEngine& engine, const SvgfFrameBuffers& b, const FastBuffers&
   a.depth_dx = b.guides.depth_dx;
   a.depth_dy = b.guides.depth_dy;
   a.albedo = b.albedo;
+  a.emission = b.emission;
   a.albedo_epsilon = p.albedo_epsilon;
   a.phi_color = p.phi_color;
   a.phi_depth = p.phi_depth;

@@ -111,16 +111,17 @@ class Random {
 TEST_CASE("stage demodulate: CPU vs CUDA bitwise on random input", "[stage]") {
   for (Size s : sizes())
     for (cuda::LaunchShape b : shapes()) {
-      Arena a(s.w, s.h, 9);
+      Arena a(s.w, s.h, 12);
       Random r(11u + static_cast<uint32_t>(s.w));
       const size_t n = a.pixels();
       const RgbView color = a.rgb("color"), albedo = a.rgb("albedo");
-      const RgbView illumination = a.rgb("illumination");
+      const RgbView emission = a.rgb("emission"), illumination = a.rgb("illumination");
       r.radiance(color.r, 3 * n);
       r.fill(albedo.r, 3 * n, 0.f, 1.f);
+      r.fill(emission.r, 3 * n, 0.f, 1.f);
       for (size_t i = 0; i < n; i += 17) albedo.g[i] = (i % 2) ? kNaN : 0.f;
       r.fill(illumination.r, 3 * n, 5.f, 6.f);  // overwritten: proves every pixel is written
-      check_stage(a, DemodulateKernel{s.w, color, albedo, illumination, 1e-3f},
+      check_stage(a, DemodulateKernel{s.w, color, albedo, emission, illumination, 1e-3f},
                   label("demodulate", s, b), b);
     }
 }
@@ -236,15 +237,16 @@ TEST_CASE("stage remodulate, tonemap, copy: CPU vs CUDA bitwise on random input"
     for (cuda::LaunchShape b : shapes()) {
       const size_t n = static_cast<size_t>(s.w) * s.h;
       {
-        Arena a(s.w, s.h, 9);
+        Arena a(s.w, s.h, 12);
         Random r(71u);
         const RgbView illumination = a.rgb("illumination"), albedo = a.rgb("albedo");
-        const RgbView output = a.rgb("output");
+        const RgbView emission = a.rgb("emission"), output = a.rgb("output");
         r.fill(illumination.r, 3 * n, 0.f, 3.f);
         r.fill(albedo.r, 3 * n, 0.f, 1.f);
+        r.fill(emission.r, 3 * n, 0.f, 2.f);
         for (size_t i = 0; i < n; i += 13) albedo.b[i] = kNaN;
         r.fill(output.r, 3 * n, 7.f, 8.f);
-        check_stage(a, RemodulateKernel{s.w, illumination, albedo, output, 1e-3f},
+        check_stage(a, RemodulateKernel{s.w, illumination, albedo, emission, output, 1e-3f},
                     label("remodulate", s, b), b);
       }
       {

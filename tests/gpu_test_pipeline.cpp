@@ -231,7 +231,7 @@ TEST_CASE("errors: CUDA failures are CudaError naming the kernel or the buffer",
     cuda::DeviceArray<float> a(albedo.data().data(), albedo.data().size());
     cuda::DeviceArray<float> out(color.data().size());
     auto rgb = [](float* p) { return RgbView{p, p + 64, p + 128}; };
-    const DemodulateKernel k{8, rgb(c.get()), rgb(a.get()), rgb(out.get()), 1e-3f};
+    const DemodulateKernel k{8, rgb(c.get()), rgb(a.get()), {}, rgb(out.get()), 1e-3f};
     try {
       cuda::run(k, 8, 8, cuda::LaunchShape{64, 32});  // 2048 threads: more than a block holds
       FAIL("no error");

@@ -76,9 +76,11 @@ Frame random_frame(int w, int h, uint32_t seed, bool optional = true) {
   // Full 32-bit range: ids above 2^24 would not survive a trip through float.
   for (uint32_t& id : f.mesh_id) id = static_cast<uint32_t>(rng());
   if (optional) {
+    f.emission = Image(w, h, 3);
     f.reference = Image(w, h, 3);
     f.direct = Image(w, h, 3);
     f.indirect = Image(w, h, 3);
+    fill(f.emission, rng, 0.f, 30.f);
     fill(f.reference, rng, 0.f, 10.f);
     fill(f.direct, rng, 0.f, 20.f);
     fill(f.indirect, rng, 0.f, 20.f);
@@ -263,6 +265,7 @@ TEST_CASE("frame round trip with FLOAT storage is bitwise exact", "[io][exr]") {
   CHECK(bitwise_equal(r.depth, f.depth));
   CHECK(bitwise_equal(r.depth_gradient, f.depth_gradient));
   CHECK(bitwise_equal(r.motion, f.motion));
+  CHECK(bitwise_equal(r.emission, f.emission));
   CHECK(bitwise_equal(r.reference, f.reference));
   CHECK(bitwise_equal(r.direct, f.direct));
   CHECK(bitwise_equal(r.indirect, f.indirect));
@@ -315,6 +318,7 @@ TEST_CASE("optional channels are written only when present", "[io][exr]") {
   io::write_frame(tmp / "f.exr", f);
   Frame r = io::read_frame(tmp / "f.exr");
   CHECK(r.position.empty());
+  CHECK(r.emission.empty());
   CHECK(r.reference.empty());
   CHECK(r.direct.empty());
   CHECK(r.indirect.empty());

@@ -88,7 +88,7 @@ TEST_CASE("pipeline: subnormals survive in TBB workers even if the caller flushe
 #endif
     tbb::task_arena arena(2);
     arena.execute([&] {
-      cpu::for_each_pixel(64, 64, DemodulateKernel{64, color.rgb(), albedo.rgb(), illum.rgb(), 1e-3f});
+      cpu::for_each_pixel(64, 64, DemodulateKernel{64, color.rgb(), albedo.rgb(), {}, illum.rgb(), 1e-3f});
     });
 #if defined(SVGF_HAVE_MXCSR)
     _mm_setcsr(saved);
@@ -114,7 +114,7 @@ TEST_CASE("pipeline: the feedback tap is what the next frame reads", "[pipeline]
   const SvgfParams& p = config.svgf;
   Image illum(w, h, 3), acc(w, h, 4), moments(w, h, 2), hist(w, h, 1), var(w, h, 4), it0(w, h, 4);
   Image none3(w, h, 3), none1(w, h, 1);
-  cpu::for_each_pixel(w, h, DemodulateKernel{w, f0.color.rgb(), f0.albedo.rgb(), illum.rgb(), p.albedo_epsilon});
+  cpu::for_each_pixel(w, h, DemodulateKernel{w, f0.color.rgb(), f0.albedo.rgb(), {}, illum.rgb(), p.albedo_epsilon});
   ReprojectKernel r;
   r.guides = r.prev_guides = f0.guides();
   r.illumination = illum.rgb();
