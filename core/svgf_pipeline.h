@@ -41,6 +41,31 @@ struct SvgfFrameBuffers {
   RgbView output;
 };
 
+// The first two stages' kernels for a frame (also used by CUDA fast mode, which fuses them).
+inline DemodulateKernel demodulate_kernel_for(const SvgfFrameBuffers& b, const SvgfParams& p) {
+  return DemodulateKernel{b.guides.width, b.color,        b.albedo,
+                          b.emission,     b.illumination, p.albedo_epsilon};
+}
+
+inline ReprojectKernel reproject_kernel_for(const SvgfFrameBuffers& b, const SvgfParams& p,
+                                            bool has_history) {
+  ReprojectKernel k;
+  k.guides = b.guides;
+  k.prev_guides = b.prev_guides;
+  k.illumination = b.illumination;
+  k.prev_color = b.prev_color;
+  k.prev_moment1 = b.prev_moment1;
+  k.prev_moment2 = b.prev_moment2;
+  k.prev_history = b.prev_history;
+  k.has_history = has_history;
+  k.accumulated = b.accumulated;
+  k.moment1 = b.next_moment1;
+  k.moment2 = b.next_moment2;
+  k.history = b.next_history;
+  k.params = p;
+  return k;
+}
+
 template <class Engine>
 void run_svgf_frame(Engine& engine, const SvgfFrameBuffers& b, const SvgfParams& p,
                     bool has_history) {
@@ -48,26 +73,10 @@ void run_svgf_frame(Engine& engine, const SvgfFrameBuffers& b, const SvgfParams&
   const int h = b.guides.height;
 
   // 1. (color - emission) / albedo -> illumination (bad samples replaced and counted).
-  engine.run_counting(
-      Stage::Demodulate,
-      DemodulateKernel{w, b.color, b.albedo, b.emission, b.illumination, p.albedo_epsilon}, w, h);
+  engine.run_counting(Stage::Demodulate, demodulate_kernel_for(b, p), w, h);
 
   // 2. illumination + history -> accumulated color, moments and history length.
-  ReprojectKernel reproject;
-  reproject.guides = b.guides;
-  reproject.prev_guides = b.prev_guides;
-  reproject.illumination = b.illumination;
-  reproject.prev_color = b.prev_color;
-  reproject.prev_moment1 = b.prev_moment1;
-  reproject.prev_moment2 = b.prev_moment2;
-  reproject.prev_history = b.prev_history;
-  reproject.has_history = has_history;
-  reproject.accumulated = b.accumulated;
-  reproject.moment1 = b.next_moment1;
-  reproject.moment2 = b.next_moment2;
-  reproject.history = b.next_history;
-  reproject.params = p;
-  engine.run(Stage::Reproject, reproject, w, h);
+  engine.run(Stage::Reproject, reproject_kernel_for(b, p, has_history), w, h);
 
   // 3. accumulated -> filtered[0] with its variance (spatial estimate for young history).
   engine.run(Stage::Variance,

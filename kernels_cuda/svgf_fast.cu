@@ -309,24 +309,9 @@ void run_frame(CudaEngine& engine, const SvgfFrameBuffers& b, const FastBuffers&
   float4* guides = reinterpret_cast<float4*>(f.guides);
 
   // 1. demodulate + reproject: exact code (exact_kernels.cu), one launch, timed as Demodulate.
-  ReprojectKernel reproject;
-  reproject.guides = b.guides;
-  reproject.prev_guides = b.prev_guides;
-  reproject.illumination = b.illumination;
-  reproject.prev_color = b.prev_color;
-  reproject.prev_moment1 = b.prev_moment1;
-  reproject.prev_moment2 = b.prev_moment2;
-  reproject.prev_history = b.prev_history;
-  reproject.has_history = has_history;
-  reproject.accumulated = b.accumulated;
-  reproject.moment1 = b.next_moment1;
-  reproject.moment2 = b.next_moment2;
-  reproject.history = b.next_history;
-  reproject.params = p;
   engine.mark(Stage::Demodulate, "demodulate+reproject");
-  launch_demodulate_reproject(
-      DemodulateKernel{w, b.color, b.albedo, b.emission, b.illumination, p.albedo_epsilon}, reproject,
-      f.guides, engine.shape(), stream, engine.counter());
+  launch_demodulate_reproject(demodulate_kernel_for(b, p), reproject_kernel_for(b, p, has_history),
+                              f.guides, engine.shape(), stream, engine.counter());
 
   // 2. variance -> packed[0].
   VarianceArgs v;
