@@ -73,16 +73,22 @@ class FrameScene {
   const CameraModel& prev_camera() const { return prev_camera_; }
   const RigidTransform& transform(int object) const { return transforms_[object]; }
   const RigidTransform& prev_transform(int object) const { return prev_transforms_[object]; }
+  // Whether the object's pose differs from the previous frame's (static ones skip the round trip
+  // through object space, so their motion is exactly camera motion).
+  bool moved(int object) const { return moved_[object] != 0; }
   const Material& material(int object) const { return desc_->objects[object].material; }
   const WorldQuad& quad(int object, int q) const { return quads_[object][q]; }
   const std::vector<Light>& lights() const { return lights_; }
   Vec3 albedo(const Hit& hit) const;  // pattern albedo at the hit (emitters: their albedo field)
 
  private:
+  void build(const EmbreeDevice& device);  // posed quads, lights and the BVH
+
   const SceneDesc* desc_;
   int frame_;
   CameraModel camera_, prev_camera_;
   std::vector<RigidTransform> transforms_, prev_transforms_;
+  std::vector<char> moved_;
   std::vector<std::vector<WorldQuad>> quads_;
   std::vector<Light> lights_;
   void* scene_ = nullptr;  // RTCScene

@@ -22,21 +22,26 @@ bool previous_screen_position(const FrameScene& scene, const Hit& hit, Vec3 dir,
                               glm::dvec2& prev) {
   if (!hit.valid()) return scene.prev_camera().project_direction(to_double(dir), prev);
   // Same object-space point, placed where its object was one frame earlier.
-  const glm::dvec3 local = scene.transform(hit.object).to_local(to_double(hit.p));
-  const glm::dvec3 before = scene.prev_transform(hit.object).to_world(local);
-  return scene.prev_camera().project(before, prev);
+  const glm::dvec3 p = to_double(hit.p);
+  if (!scene.moved(hit.object)) return scene.prev_camera().project(p, prev);
+  const glm::dvec3 local = scene.transform(hit.object).to_local(p);
+  return scene.prev_camera().project(scene.prev_transform(hit.object).to_world(local), prev);
 }
 
 GBufferSample gbuffer_sample(const FrameScene& scene, int x, int y, const Hit& hit, Vec3 dir) {
   GBufferSample g;
   const CameraModel& cam = scene.camera();
   const double cx = x + 0.5, cy = y + 0.5;
-  glm::dvec2 prev;
-  if (!previous_screen_position(scene, hit, dir, prev)) {
-    // Behind the previous camera: no previous position. Point off the image, at (-W, -H).
-    prev = {-static_cast<double>(cam.width()), -static_cast<double>(cam.height())};
-  }
-  g.motion = make_vec2(static_cast<float>(prev.x - cx), static_cast<float>(prev.y - cy));
+  // Both positions come from projecting the same point, so rounding cancels and a static point
+  // seen by a static camera gets exactly 0 (the hit point is within ~1e-5 px of the centre).
+  glm::dvec2 prev, cur;
+  const bool seen_before = previous_screen_position(scene, hit, dir, prev);
+  const bool seen_now = hit.valid() ? cam.project(to_double(hit.p), cur)
+                                    : cam.project_direction(to_double(dir), cur);
+  if (!seen_now) cur = {cx, cy};
+  // Behind the previous camera: no previous position; point off the image, at (-W, -H).
+  if (!seen_before) prev = {-static_cast<double>(cam.width()), -static_cast<double>(cam.height())};
+  g.motion = make_vec2(static_cast<float>(prev.x - cur.x), static_cast<float>(prev.y - cur.y));
   if (!hit.valid()) return g;
 
   const Material& m = scene.material(hit.object);

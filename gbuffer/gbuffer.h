@@ -2,7 +2,8 @@
 // The G-buffer of one pixel, from its primary hit (the camera ray through the pixel centre).
 // Conventions (docs/gbuffer.md): normal faces the camera; depth = -z_view of the hit;
 // depth_gradient = analytic screen derivative of the depth of the hit's tangent plane;
-// motion = previous screen position of the same object-space point minus (x+0.5, y+0.5).
+// motion = previous screen position of the hit's object-space point minus its current one
+// (which is (x+0.5, y+0.5) up to float rounding of the hit, ~1e-5 px).
 #include <cstdint>
 
 #include "core/vec.h"

@@ -42,7 +42,7 @@ Vec3 sample_direct(const FrameScene& scene, Vec3 p, Vec3 n, Vec3 albedo, const f
 
 Vec3 sample_cosine(Vec3 n, float u0, float u1) {
   double s, c;
-  sincos_turns(static_cast<double>(u1), s, c);
+  sincos_turns_coarse(static_cast<double>(u1), s, c);
   const float r = std::sqrt(u0);
   const float lx = r * static_cast<float>(c);
   const float ly = r * static_cast<float>(s);
