@@ -42,6 +42,48 @@ SVGF_TAP_LOOP void atrous_tap(const float* __restrict depth, const float* __rest
   }
 }
 
+// The five taps dx = -2..2 of one a-trous tap row, for pixels x0..x1 whose five taps all lie
+// inside the image: the same terms in the same order as five atrous_tap calls, with the centre
+// and the running sums held in registers across the five (half the loads and stores).
+template <class Power, bool kCentreRow>
+SVGF_TAP_LOOP void atrous_tap_row(const float* __restrict depth, const float* __restrict nx,
+                                  const float* __restrict ny, const float* __restrict nz,
+                                  const float* __restrict lum, const float* __restrict cr,
+                                  const float* __restrict cg, const float* __restrict cb,
+                                  const float* __restrict var_in,
+                                  const float* __restrict inv_phi_z,
+                                  const float* __restrict inv_phi_l, float* __restrict sw,
+                                  float* __restrict sr, float* __restrict sg,
+                                  float* __restrict sb, float* __restrict sv, int row,
+                                  int row_offset, int step, int x0, int x1, const float* inv_dist,
+                                  const float* kw, const Power& power) {
+  const float d[5] = {inv_dist[0], inv_dist[1], inv_dist[2], inv_dist[3], inv_dist[4]};
+  const float k[5] = {kw[0], kw[1], kw[2], kw[3], kw[4]};
+  for (int x = x0; x < x1; ++x) {
+    const int i = row + x;
+    const EdgeSample c{depth[i], make_vec3(nx[i], ny[i], nz[i]), lum[i]};
+    const float ipz = inv_phi_z[x], ipl = inv_phi_l[x];
+    float w_sum = sw[x], r_sum = sr[x], g_sum = sg[x], b_sum = sb[x], v_sum = sv[x];
+#pragma GCC unroll 5
+    for (int t = 0; t < 5; ++t) {
+      if (kCentreRow && t == 2) continue;  // the centre tap is already in the sums
+      const int j = i + row_offset + (t - 2) * step;
+      const EdgeSample q{depth[j], make_vec3(nx[j], ny[j], nz[j]), lum[j]};
+      const float wt = edge_stopping_weight(c, q, ipz * d[t], power, ipl) * k[t];
+      w_sum = w_sum + wt;
+      r_sum = r_sum + cr[j] * wt;
+      g_sum = g_sum + cg[j] * wt;
+      b_sum = b_sum + cb[j] * wt;
+      v_sum = v_sum + var_in[j] * (wt * wt);
+    }
+    sw[x] = w_sum;
+    sr[x] = r_sum;
+    sg[x] = g_sum;
+    sb[x] = b_sum;
+    sv[x] = v_sum;
+  }
+}
+
 // One tap of the 7x7 spatial variance estimate, likewise.
 template <class Power>
 SVGF_TAP_LOOP void variance_tap(const float* __restrict depth, const float* __restrict nx,
@@ -142,17 +184,38 @@ void atrous_row(const AtrousKernel& k, const float* __restrict lum, int y, RowSc
   const float* __restrict cr = k.in.color.r;
   const float* __restrict cg = k.in.color.g;
   const float* __restrict cb = k.in.color.b;
+  // Pixels whose 5 taps in x all lie inside take the five taps of a tap row at once; the border
+  // pixels on either side take them one at a time. Each pixel still adds dx = -2..2 in order.
+  const int inner0 = std::min(w, 2 * k.step), inner1 = std::max(inner0, w - 2 * k.step);
   for (int dy = -2; dy <= 2; ++dy) {
     const int yq = y + dy * k.step;
     if (yq < 0 || yq >= h) continue;
+    float kw[5], inv_dist[5];
+    for (int dx = -2; dx <= 2; ++dx) {
+      kw[dx + 2] = b3_weight(dx < 0 ? -dx : dx) * b3_weight(dy < 0 ? -dy : dy);
+      inv_dist[dx + 2] = inv_tap_distance(dx, dy, k.step);
+    }
+    const int row_offset = (yq - y) * w;
+    if (dy == 0)
+      atrous_tap_row<Power, true>(depth, nx, ny, nz, lum, cr, cg, cb, var_in, inv_phi_z,
+                                  inv_phi_l, sw, sr, sg, sb, sv, row, row_offset, k.step, inner0,
+                                  inner1, inv_dist, kw, power);
+    else
+      atrous_tap_row<Power, false>(depth, nx, ny, nz, lum, cr, cg, cb, var_in, inv_phi_z,
+                                   inv_phi_l, sw, sr, sg, sb, sv, row, row_offset, k.step, inner0,
+                                   inner1, inv_dist, kw, power);
     for (int dx = -2; dx <= 2; ++dx) {
       if (dx == 0 && dy == 0) continue;
       const int off = dx * k.step;
       const int x0 = std::max(0, -off), x1 = std::min(w, w - off);
-      const float kw = b3_weight(dx < 0 ? -dx : dx) * b3_weight(dy < 0 ? -dy : dy);
-      const float inv_dist = inv_tap_distance(dx, dy, k.step);
-      atrous_tap(depth, nx, ny, nz, lum, cr, cg, cb, var_in, inv_phi_z, inv_phi_l, sw, sr, sg, sb, sv, row,
-                 (yq - y) * w + off, x0, x1, inv_dist, kw, power);
+      const auto tap = [&](int from, int to) {
+        if (from < to)
+          atrous_tap(depth, nx, ny, nz, lum, cr, cg, cb, var_in, inv_phi_z, inv_phi_l, sw, sr,
+                     sg, sb, sv, row, row_offset + off, from, to, inv_dist[dx + 2], kw[dx + 2],
+                     power);
+      };
+      tap(x0, std::min(x1, inner0));  // left border
+      tap(std::max(x0, inner1), x1);  // right border
     }
   }
   for (int x = 0; x < w; ++x) {
