@@ -128,6 +128,7 @@ std::vector<ChannelDiff> compare_frames(const Frame& stored, const Frame& render
   Comparer c(opt, out);
   c.image(stored.color, rendered.color, ch::kColor, st.color);
   c.image(stored.albedo, rendered.albedo, ch::kAlbedo, st.albedo);
+  c.image(stored.emission, rendered.emission, ch::kEmission, st.color);
   c.image(stored.normal, rendered.normal, ch::kNormal, st.normal);
   c.image(stored.position, rendered.position, ch::kPosition, st.position);
   c.image(stored.depth, rendered.depth, &ch::kDepth, st.depth);

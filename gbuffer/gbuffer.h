@@ -15,6 +15,7 @@ struct GBufferSample {
   Vec3 position;                          // 0 on background
   Vec3 normal;                            // 0 on background
   Vec3 albedo = make_vec3(1.f, 1.f, 1.f); // 1 on background and emitters
+  Vec3 emission;                          // radiance the surface emits towards the camera
   float depth = 0.f;                      // 0 on background
   Vec2 depth_gradient;                    // 0 on background
   Vec2 motion;

@@ -80,6 +80,7 @@ Frame Renderer::render(const SceneDesc& desc, int frame, const RenderSettings& s
   Frame f;
   f.index = frame;
   f.allocate(w, h);
+  f.emission = Image(w, h, 3);
   if (settings.reference_spp > 0) f.reference = Image(w, h, 3);
   if (settings.split) {
     f.direct = Image(w, h, 3);
@@ -101,6 +102,7 @@ Frame Renderer::render(const SceneDesc& desc, int frame, const RenderSettings& s
         store(f.position, i, g.position);
         store(f.normal, i, g.normal);
         store(f.albedo, i, g.albedo);
+        store(f.emission, i, g.emission);
         f.depth.plane(0)[i] = g.depth;
         f.depth_gradient.plane(0)[i] = g.depth_gradient.x;
         f.depth_gradient.plane(1)[i] = g.depth_gradient.y;

@@ -231,6 +231,7 @@ TEST_CASE("G-buffer: unit normals, depth agrees with position and camera", "[gbu
         REQUIRE(id <= scene.objects.size());
         if (id == 0) {
           ++background;
+          CHECK(load3(f.emission, x, y).y == 0.f);
           CHECK(f.depth.at(x, y, 0) == 0.f);
           CHECK(length(load3(f.normal, x, y)) == 0.f);
           CHECK(load3(f.albedo, x, y).x == 1.f);
@@ -241,6 +242,11 @@ TEST_CASE("G-buffer: unit normals, depth agrees with position and camera", "[gbu
         if (scene.objects[id - 1].material.is_emitter()) {
           ++emitters;
           CHECK(load3(f.albedo, x, y).y == 1.f);
+          // A camera ray that hits the (front of the) light sees its emission and nothing else.
+          CHECK(load3(f.emission, x, y).x > 0.f);
+          CHECK(load3(f.color, x, y).x == load3(f.emission, x, y).x);
+        } else {
+          CHECK(load3(f.emission, x, y).x == 0.f);
         }
         const Vec3 p = load3(f.position, x, y);
         const Vec3 n = load3(f.normal, x, y);
