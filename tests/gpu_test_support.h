@@ -149,6 +149,7 @@ struct Mapper {
 inline DemodulateKernel to_device(DemodulateKernel k, const Mapper& m) {
   k.color = m(k.color);
   k.albedo = m(k.albedo);
+  k.emission = m(k.emission);
   k.illumination = m(k.illumination);
   return k;
 }
@@ -184,6 +185,7 @@ inline AtrousKernel to_device(AtrousKernel k, const Mapper& m) {
 inline RemodulateKernel to_device(RemodulateKernel k, const Mapper& m) {
   k.illumination = m(k.illumination);
   k.albedo = m(k.albedo);
+  k.emission = m(k.emission);
   k.output = m(k.output);
   return k;
 }

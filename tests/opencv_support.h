@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <random>
@@ -208,7 +209,9 @@ struct FixtureScan {
 inline FixtureScan scan_fixtures() {
   namespace fs = std::filesystem;
   FixtureScan scan;
-  const fs::path root = fs::path(SVGF_SOURCE_DIR) / "fixtures";
+  // SVGF_FIXTURES_DIR (as for svgf_gpu_tests) lets a copied binary find them elsewhere.
+  const char* env = std::getenv("SVGF_FIXTURES_DIR");
+  const fs::path root = env ? fs::path(env) : fs::path(SVGF_SOURCE_DIR) / "fixtures";
   scan.root = root.string();
   if (!fs::is_directory(root)) return scan;
   for (const auto& e : fs::directory_iterator(root)) {
