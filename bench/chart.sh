@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# Draws the benchmark charts (gnuplot) from suite results:
+#   bench/chart.sh [RESULTS_DIR [OUT_DIR]]      (both default to docs/bench)
+# RESULTS_DIR holds cpu.json and/or gpu.json (svgf-bench suite ...). Writes OUT_DIR/data/*.dat
+# and summary.md (svgf-bench chart-data), then OUT_DIR/*.png. Set SVGF_BENCH to the binary if it
+# is not in build-bench/ or build/.
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+root=$(dirname "$here")
+results=${1:-$root/docs/bench}
+out=${2:-$results}
+bench=${SVGF_BENCH:-}
+if [ -z "$bench" ]; then
+  for b in "$root/build-bench/bench/svgf-bench" "$root/build/bench/svgf-bench"; do
+    if [ -x "$b" ]; then bench=$b; break; fi
+  done
+fi
+[ -n "$bench" ] || { echo "chart.sh: build svgf-bench first, or set SVGF_BENCH" >&2; exit 1; }
+command -v gnuplot >/dev/null || { echo "chart.sh: gnuplot is not installed (apt-get install gnuplot-nox)" >&2; exit 1; }
+
+data=$out/data
+"$bench" chart-data "$results" --out "$data"
+
+# Where the chart's times come from, for the subtitle.
+subtitle="CPU: $(jq -r '.host.cpu_model + ", " + (.host.hardware_threads|tostring) + " threads"' "$results/cpu.json" 2>/dev/null || echo '-')"
+subtitle+="; GPU: $(jq -r '.device.name // "-"' "$results/gpu.json" 2>/dev/null || echo '-')"
+size=$(jq -r '[.timings[] | select(.group == "chart")][0].input | "\(.width)x\(.height)"' "$results/cpu.json" 2>/dev/null || true)
+[ -n "$size" ] && [ "$size" != "null" ] && subtitle+="; frames of $size"
+subtitle+="; quality on the fixtures"
+
+for metric in psnr flip; do
+  gnuplot -e "data='$data'; out='$out/quality_$metric.png'; metric='$metric'; subtitle='$subtitle'" \
+    "$here/chart/quality.gp"
+done
+while read -r scene; do
+  [ -n "$scene" ] || continue
+  gnuplot -e "data='$data'; scene='$scene'; out='$out/errors_$scene.png'" "$here/chart/errors.gp"
+done < "$data/scenes.txt"
+gnuplot -e "data='$data'; out_pixels='$out/scaling_pixels.png'; out_iterations='$out/scaling_iterations.png'" \
+  "$here/chart/scaling.gp"
+# Nsight Compute reports of the GPU run (bench/gpu_run.sh), summarized, when present.
+ncu_reports=$(ls "$results"/raw/ncu_*.csv 2>/dev/null || true)
+if [ -n "$ncu_reports" ] && command -v python3 >/dev/null; then
+  # shellcheck disable=SC2086
+  python3 "$here/ncu_summary.py" $((1920 * 1080)) $ncu_reports > "$data/ncu_1080p.md"
+fi
+echo "chart.sh: charts in $out, tables in $data/summary.md"

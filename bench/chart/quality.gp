@@ -1,0 +1,35 @@
+# Quality against time per frame, Pareto front marked. Called by bench/chart.sh with
+#   data = folder of svgf-bench chart-data's tables, out = PNG path,
+#   metric = "psnr" (column 2, higher is better) or "flip" (column 3, lower is better),
+#   subtitle = where the times come from.
+set terminal pngcairo size 1280,820 font "DejaVu Sans,11"
+set output out
+col = (metric eq "psnr") ? 2 : 3
+set title (metric eq "psnr" ? "Mean PSNR" : "Mean FLIP") . " over the fixture scenes against time per frame\n{/*0.8 " . subtitle . "}"
+set xlabel "time per frame, ms (median of the filter stages; log scale)"
+set ylabel (metric eq "psnr" ? "PSNR, dB (higher is better)" : "FLIP (lower is better)")
+set logscale x
+set grid xtics ytics mxtics
+set key outside right top box
+set style line 1 lc rgb "#1f77b4" pt 7 ps 1.4
+set style line 2 lc rgb "#2ca02c" pt 5 ps 1.4
+set style line 3 lc rgb "#d62728" pt 9 ps 1.6
+set style line 4 lc rgb "#7f7f7f" pt 13 ps 1.5
+set style line 8 lc rgb "#9467bd" lw 2 dt 2
+set style line 9 lc rgb "#ff7f0e" lw 2 dt 2
+front(plat) = data . "/pareto_" . metric . "_" . plat . ".dat"
+f(s) = data . "/points_" . s . ".dat"
+# Series without points (say, no GPU results yet) are skipped with a gnuplot warning.
+plot \
+  front("gpu") using 1:2 with steps ls 9 title "Pareto front, GPU", \
+  front("gpu") using 1:2 with points pt 6 ps 2.6 lc rgb "#ff7f0e" notitle, \
+  front("cpu") using 1:2 with steps ls 8 title "Pareto front, CPU", \
+  front("cpu") using 1:2 with points pt 6 ps 2.6 lc rgb "#9467bd" notitle, \
+  f("cpu_exact") using 1:col ls 1 title "SVGF CPU exact", \
+  f("cpu_exact") using 1:col:6 with labels offset 0.6,0.7 left font ",8" tc rgb "#1f77b4" notitle, \
+  f("cuda_exact") using 1:col ls 2 title "SVGF CUDA exact", \
+  f("cuda_exact") using 1:col:6 with labels offset 0.6,-0.7 left font ",8" tc rgb "#2ca02c" notitle, \
+  f("cuda_fast") using 1:col ls 3 title "SVGF CUDA fast", \
+  f("cuda_fast") using 1:col:6 with labels offset -0.6,0.7 right font ",8" tc rgb "#d62728" notitle, \
+  f("baselines") using 1:col ls 4 title "OpenCV baselines (CPU)", \
+  f("baselines") using 1:col:6 with labels offset 0.6,0 left font ",8" tc rgb "#555555" notitle

@@ -1,0 +1,14 @@
+// bench/gpu_probe.h for builds without CUDA: no device.
+#include "bench/gpu_probe.h"
+
+namespace svgf::bench {
+
+DeviceInfo query_device() {
+  DeviceInfo d;
+  d.why_absent = "this build has no CUDA backend";
+  return d;
+}
+void measure_ceilings(DeviceInfo&) {}
+size_t device_used_bytes() { return 0; }
+
+}  // namespace svgf::bench

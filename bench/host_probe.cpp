@@ -1,0 +1,127 @@
+#include "bench/host_probe.h"
+
+#include <sys/resource.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <fstream>
+#include <thread>
+#include <vector>
+
+namespace svgf::bench {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+double median_of(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+// 16 vectors of 8 floats: enough independent mul->add chains to cover the latency of both.
+constexpr int kLanes = 128;
+__attribute__((noinline)) float ops_kernel(long iterations, float m, float a) {
+  float acc[kLanes];
+  for (int k = 0; k < kLanes; ++k) acc[k] = 1.f + 1e-3f * static_cast<float>(k);
+  for (long i = 0; i < iterations; ++i)
+    for (int k = 0; k < kLanes; ++k) acc[k] = acc[k] * m + a;
+  float s = 0.f;
+  for (int k = 0; k < kLanes; ++k) s += acc[k];
+  return s;
+}
+
+}  // namespace
+
+std::array<double, 3> load_average() {
+  std::array<double, 3> l{};
+  std::ifstream f("/proc/loadavg");
+  f >> l[0] >> l[1] >> l[2];
+  return l;
+}
+
+HostInfo query_host() {
+  HostInfo h;
+  h.hardware_threads = static_cast<int>(std::thread::hardware_concurrency());
+  std::ifstream f("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(f, line))
+    if (line.rfind("model name", 0) == 0) {
+      const size_t colon = line.find(':');
+      if (colon != std::string::npos) h.cpu_model = line.substr(colon + 2);
+      break;
+    }
+  char name[256] = {};
+  if (gethostname(name, sizeof name - 1) == 0) h.hostname = name;
+  h.load = load_average();
+  return h;
+}
+
+CpuUsage cpu_usage() {
+  CpuUsage u;
+  std::ifstream f("/proc/stat");
+  std::string cpu;
+  double user = 0, nice = 0, system = 0, idle = 0, iowait = 0, irq = 0, softirq = 0, steal = 0;
+  f >> cpu >> user >> nice >> system >> idle >> iowait >> irq >> softirq >> steal;
+  const double tick = static_cast<double>(sysconf(_SC_CLK_TCK));
+  u.machine_busy_s = (user + nice + system + irq + softirq + steal) / tick;
+  rusage r{};
+  getrusage(RUSAGE_SELF, &r);
+  u.process_s = static_cast<double>(r.ru_utime.tv_sec + r.ru_stime.tv_sec) +
+                1e-6 * static_cast<double>(r.ru_utime.tv_usec + r.ru_stime.tv_usec);
+  u.wall_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  return u;
+}
+
+double others_share(const CpuUsage& a, const CpuUsage& b) {
+  const double cpus = std::max(1u, std::thread::hardware_concurrency());
+  const double wall = b.wall_s - a.wall_s;
+  if (wall <= 0) return 0;
+  const double others = (b.machine_busy_s - a.machine_busy_s) - (b.process_s - a.process_s);
+  return std::max(0.0, others / (wall * cpus));
+}
+
+double host_copy_gbs(int threads) {
+  const size_t bytes = size_t(256) << 20;
+  std::vector<char> a(bytes, 1), b(bytes, 2);
+  tbb::task_arena arena(std::max(threads, 1));
+  const size_t chunk = bytes / static_cast<size_t>(std::max(threads, 1));
+  std::vector<double> s;
+  for (int rep = 0; rep < 6; ++rep) {
+    const auto t0 = std::chrono::steady_clock::now();
+    arena.execute([&] {
+      tbb::parallel_for(0, std::max(threads, 1), [&](int t) {
+        std::memcpy(b.data() + t * chunk, a.data() + t * chunk, chunk);
+      });
+    });
+    s.push_back(seconds_since(t0));
+  }
+  return 2.0 * static_cast<double>(bytes) / median_of(s) / 1e9;
+}
+
+double host_float_ops_per_s(int threads) {
+  const long iterations = 40'000'000;  // about 0.1 s a thread: thread start-up is noise
+  tbb::task_arena arena(std::max(threads, 1));
+  std::vector<double> s;
+  std::vector<float> results(static_cast<size_t>(std::max(threads, 1)));
+  for (int rep = 0; rep < 3; ++rep) {
+    const auto t0 = std::chrono::steady_clock::now();
+    arena.execute([&] {
+      tbb::parallel_for(0, std::max(threads, 1), [&](int t) {
+        results[static_cast<size_t>(t)] = ops_kernel(iterations, 0.999f, 0.001f);
+      });
+    });
+    s.push_back(seconds_since(t0));
+  }
+  volatile float sink = 0.f;  // the results are used, so the loops are not removed
+  for (float r : results) sink = sink + r;
+  return 2.0 * kLanes * static_cast<double>(iterations) * std::max(threads, 1) / median_of(s);
+}
+
+}  // namespace svgf::bench

@@ -1,0 +1,37 @@
+#pragma once
+// The CPU as the benchmark reports it: model, cores, load, and measured ceilings for the CPU
+// floor (copy bandwidth, and the rate of the un-fused float multiply/add the kernels compile to).
+#include <array>
+#include <string>
+
+namespace svgf::bench {
+
+struct HostInfo {
+  std::string cpu_model;
+  int hardware_threads = 0;
+  std::array<double, 3> load{};  // /proc/loadavg at the time of the query
+  std::string hostname;
+};
+
+HostInfo query_host();
+std::array<double, 3> load_average();
+
+// CPU time used by the whole machine and by this process, to tell how much of the machine
+// other processes took while a measurement ran (load averages lag by a minute).
+struct CpuUsage {
+  double machine_busy_s = 0;  // all CPUs, from /proc/stat (idle and iowait excluded)
+  double process_s = 0;       // this process, user + system
+  double wall_s = 0;          // a steady clock
+};
+CpuUsage cpu_usage();
+// Share of the machine's CPUs that other processes used between a and b (0: quiet, 1: all).
+double others_share(const CpuUsage& a, const CpuUsage& b);
+
+// memcpy of 256 MiB split over `threads` workers; bytes read + written per second.
+double host_copy_gbs(int threads);
+// Float operations per second of independent vectorized multiply-then-add chains on `threads`
+// workers, compiled with the CPU kernels' instruction-set flags and no FMA: the rate the
+// a-trous loops could reach if nothing else limited them.
+double host_float_ops_per_s(int threads);
+
+}  // namespace svgf::bench

@@ -1,0 +1,381 @@
+#include "bench/runner.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+#include <thread>
+
+#include "bench/gpu_probe.h"
+#include "bench/host_probe.h"
+#include "bench/quality.h"
+#include "bench/stage_cost.h"
+#include "bench/stats.h"
+
+namespace svgf::bench {
+namespace {
+
+using json = nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+json summary_json(const Summary& s) {
+  return {{"median", s.median}, {"p95", s.p95}, {"mean", s.mean},
+          {"min", s.min},       {"max", s.max}, {"count", s.count}};
+}
+
+// JSON has no infinities: a PSNR of identical images becomes null.
+json finite_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+bool is_transfer(Stage s) { return s == Stage::Upload || s == Stage::Download; }
+
+}  // namespace
+
+int RunConfig::resolved_threads() const {
+  const int t = denoiser.threads;
+  return t > 0 ? t : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
+std::string RunConfig::key() const {
+  if (method == "svgf") {
+    std::string k = std::string("svgf ") + to_string(denoiser.backend) + " " +
+                    to_string(denoiser.mode) + " it" + std::to_string(denoiser.svgf.iterations) +
+                    " tap" + std::to_string(denoiser.svgf.feedback_tap);
+    const DenoiserConfig defaults;
+    if (denoiser.backend == Backend::Cuda &&
+        (denoiser.block_x != defaults.block_x || denoiser.block_y != defaults.block_y))
+      k += " b" + std::to_string(denoiser.block_x) + "x" + std::to_string(denoiser.block_y);
+    return k;
+  }
+  if (method == "noisy") return "noisy input";
+  return baseline.label();
+}
+
+std::string RunConfig::label() const {
+  const bool cpu_work = method != "noisy" && (method != "svgf" || denoiser.backend == Backend::Cpu);
+  return key() + (cpu_work ? " t" + std::to_string(resolved_threads()) : "");
+}
+
+RunConfig svgf_config(Backend backend, Mode mode, int iterations, int feedback_tap, int threads) {
+  RunConfig c;
+  c.method = "svgf";
+  c.denoiser.backend = backend;
+  c.denoiser.mode = mode;
+  c.denoiser.threads = threads;
+  c.denoiser.svgf.iterations = iterations;
+  c.denoiser.svgf.feedback_tap = feedback_tap;
+  return c;
+}
+
+json config_json(const RunConfig& c) {
+  json j;
+  j["method"] = c.method;
+  j["label"] = c.label();
+  j["key"] = c.key();
+  if (c.method == "svgf") {
+    const SvgfParams& p = c.denoiser.svgf;
+    j["backend"] = to_string(c.denoiser.backend);
+    j["mode"] = to_string(c.denoiser.mode);
+    j["iterations"] = p.iterations;
+    j["feedback_tap"] = p.feedback_tap;
+    if (c.denoiser.backend == Backend::Cuda) j["block"] = {c.denoiser.block_x, c.denoiser.block_y};
+  } else if (c.method != "noisy") {
+    j["backend"] = "cpu";
+    j["mode"] = "opencv";
+    j["params"] = {c.baseline.p1, c.baseline.p2, c.baseline.p3};
+  }
+  if (c.method != "noisy" && (c.method != "svgf" || c.denoiser.backend == Backend::Cpu))
+    j["threads"] = c.resolved_threads();
+  return j;
+}
+
+json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
+              const Ceilings& ceilings) {
+  if (c.method == "noisy") throw std::invalid_argument("the noisy input has no time to measure");
+  if (fs.frames.empty()) throw std::invalid_argument("time_run: no frames");
+  const bool svgf = c.method == "svgf";
+  const bool cuda = svgf && c.denoiser.backend == Backend::Cuda;
+  const Mode cost_mode = svgf ? c.denoiser.mode : Mode::Exact;
+  const double pixels = static_cast<double>(fs.width) * fs.height;
+  const bool emission = !fs.frames.front().emission.empty();
+  const double surface = fs.surface_fraction();
+
+  const size_t mem_before = cuda ? device_used_bytes() : 0;
+  size_t mem_peak = 0;
+  std::unique_ptr<Denoiser> den;
+  std::string description;
+  if (svgf) {
+    den = make_denoiser(c.denoiser);
+    description = den->description();
+  } else {
+    set_baseline_threads(c.resolved_threads());
+    description =
+        "opencv " + c.baseline.label() + ", " + std::to_string(c.resolved_threads()) + " threads";
+  }
+
+  std::vector<std::vector<double>> stage_ms(kStageCount);
+  std::vector<double> filter_ms, wall_ms;
+  const auto load_before = load_average();
+  CpuUsage usage_before = cpu_usage();
+  const int n = static_cast<int>(fs.frames.size());
+  Image out;
+  Clock::time_point timing_start = Clock::now();
+  int timed = 0;
+  for (int m = 0;; ++m) {
+    const bool warm = m < t.warmup;
+    if (m == t.warmup) {
+      timing_start = Clock::now();
+      usage_before = cpu_usage();  // the timed frames only
+    }
+    if (!warm) {
+      if (timed >= t.frames) break;
+      if (t.budget_s > 0 && timed >= t.min_frames && ms_since(timing_start) > 1e3 * t.budget_s)
+        break;
+    }
+    const int k = m % n;
+    const Frame& f = fs.frames[static_cast<size_t>(k)];
+    // A fixture played again from its first frame is a cut; rendered frame sets are cycled
+    // without one (their loop is a small jump the reprojection handles as motion).
+    if (svgf && m > 0 && (fs.is_cut(k) || (k == 0 && fs.source == "fixture"))) den->reset();
+    const auto t0 = Clock::now();
+    if (svgf)
+      den->denoise(f, out);
+    else
+      run_baseline(c.baseline, f, out);
+    const double wall = ms_since(t0);
+    if (cuda) {
+      const size_t used = device_used_bytes();
+      mem_peak = std::max(mem_peak, used > mem_before ? used - mem_before : size_t(0));
+    }
+    if (warm) continue;
+    ++timed;
+    wall_ms.push_back(wall);
+    if (svgf) {
+      const StageTimes& st = den->last_report().times;
+      for (int s = 0; s < kStageCount; ++s)
+        stage_ms[static_cast<size_t>(s)].push_back(st.ms[static_cast<size_t>(s)]);
+      filter_ms.push_back(st.filter_ms());
+    } else {
+      filter_ms.push_back(wall);
+    }
+  }
+  const auto load_after = load_average();
+  const double others = others_share(usage_before, cpu_usage());
+
+  json j;
+  j["config"] = config_json(c);
+  j["label"] = c.label();
+  j["key"] = c.key();
+  j["description"] = description;
+  j["input"] = {
+      {"source", fs.source},  {"scene", fs.scene},           {"description", fs.description},
+      {"width", fs.width},    {"height", fs.height},         {"pixels", pixels},
+      {"distinct_frames", n}, {"surface_fraction", surface}, {"emission", emission}};
+  j["warmup"] = t.warmup;
+  j["frames"] = timed;
+  const Summary filter = summarize(filter_ms), wall = summarize(wall_ms);
+  j["frame_ms"] = {{"filter", summary_json(filter)}, {"wall", summary_json(wall)}};
+  j["frame_mpix_per_s"] = filter.median > 0 ? pixels / (filter.median * 1e3) : 0.0;
+  j["ceilings"] = {{"copy_gbs", ceilings.copy_gbs},
+                   {"ops_per_s", ceilings.ops_per_s},
+                   {"copy_what", ceilings.copy_what}};
+
+  json stages = json::array();
+  double floor_total = 0, bytes_total = 0, ops_total = 0;
+  if (svgf) {
+    const SvgfParams& p = c.denoiser.svgf;
+    for (int s = 0; s < kStageCount; ++s) {
+      const Stage stage = static_cast<Stage>(s);
+      const Summary st = summarize(stage_ms[static_cast<size_t>(s)]);
+      const StageCost cost = stage_cost(cost_mode, stage, p, emission, surface);
+      if (st.max <= 0 && cost.bytes() <= 0) continue;  // not run by this backend/mode
+      if (is_transfer(stage) && !cuda) continue;
+      json e;
+      e["stage"] = stage_name(stage);
+      e["ms"] = summary_json(st);
+      e["mpix_per_s"] = st.median > 0 ? pixels / (st.median * 1e3) : 0.0;
+      e["bytes_read_per_px"] = cost.read;
+      e["bytes_written_per_px"] = cost.written;
+      e["ops_per_px"] = cost.ops;
+      e["planes"] = cost.planes;
+      const double bytes = cost.bytes() * pixels;
+      e["bytes_per_frame"] = bytes;
+      const double gbs = st.median > 0 ? bytes / (st.median * 1e-3) / 1e9 : 0.0;
+      e["achieved_gbs"] = gbs;
+      e["host_link"] = is_transfer(stage);
+      if (!is_transfer(stage)) {
+        const double bytes_ms = ceilings.copy_gbs > 0 ? bytes / (ceilings.copy_gbs * 1e9) * 1e3 : 0;
+        const double ops_ms =
+            ceilings.ops_per_s > 0 ? cost.ops * pixels / ceilings.ops_per_s * 1e3 : 0;
+        const double floor = std::max(bytes_ms, ops_ms);
+        e["pct_of_copy_bw"] = ceilings.copy_gbs > 0 ? 100.0 * gbs / ceilings.copy_gbs : 0.0;
+        e["floor"] = {{"bytes_ms", bytes_ms},
+                      {"ops_ms", ops_ms},
+                      {"floor_ms", floor},
+                      {"bound", ops_ms > bytes_ms ? "ops" : "bytes"},
+                      {"ratio", floor > 0 ? st.median / floor : 0.0}};
+        floor_total += floor;
+        bytes_total += bytes;
+        ops_total += cost.ops * pixels;
+      }
+      stages.push_back(e);
+    }
+    const double bytes_ms =
+        ceilings.copy_gbs > 0 ? bytes_total / (ceilings.copy_gbs * 1e9) * 1e3 : 0;
+    const double ops_ms = ceilings.ops_per_s > 0 ? ops_total / ceilings.ops_per_s * 1e3 : 0;
+    j["floor"] = {{"bytes_per_frame", bytes_total},
+                  {"ops_per_frame", ops_total},
+                  {"bytes_per_px", bytes_total / pixels},
+                  {"ops_per_px", ops_total / pixels},
+                  {"bytes_ms", bytes_ms},
+                  {"ops_ms", ops_ms},
+                  // Stages run one after another, so the frame's floor is the sum of theirs.
+                  {"floor_ms", floor_total},
+                  {"ratio", floor_total > 0 ? filter.median / floor_total : 0.0},
+                  {"frame_achieved_gbs",
+                   filter.median > 0 ? bytes_total / (filter.median * 1e-3) / 1e9 : 0.0}};
+  }
+  j["stages"] = stages;
+  if (cuda) j["peak_device_bytes"] = mem_peak;
+  j["load_before"] = load_before;
+  j["load_after"] = load_after;
+  j["others_cpu_share"] = others;
+  j["per_frame_filter_ms"] = filter_ms;
+  j["per_frame_wall_ms"] = wall_ms;
+  return j;
+}
+
+json quality_run(const RunConfig& c, const FrameSet& fs) {
+  if (!fs.has_reference())
+    throw std::invalid_argument("quality: " + fs.description + " has no reference");
+  const bool svgf = c.method == "svgf";
+  std::unique_ptr<Denoiser> den;
+  if (svgf)
+    den = make_denoiser(c.denoiser);
+  else if (c.method != "noisy")
+    set_baseline_threads(c.resolved_threads());
+  QualityTracker tracker;
+  json frames = json::array();
+  double sums[4] = {0, 0, 0, 0}, temporal[2] = {0, 0};
+  int finite_psnr = 0, n_temporal[2] = {0, 0};
+  Image out;
+  for (int k = 0; k < static_cast<int>(fs.frames.size()); ++k) {
+    const Frame& f = fs.frames[static_cast<size_t>(k)];
+    const bool cut = fs.is_cut(k);
+    int64_t replaced = 0;
+    if (svgf) {
+      if (cut) den->reset();
+      den->denoise(f, out);
+      replaced = den->last_report().replaced_samples;
+    } else if (c.method == "noisy") {
+      out = f.color;
+    } else {
+      run_baseline(c.baseline, f, out);
+    }
+    const FrameQuality q = tracker.add(out, f.reference, cut);
+    json e = {{"frame", k},     {"psnr", finite_or_null(q.psnr)},
+              {"ssim", q.ssim}, {"relmse", q.relmse},
+              {"flip", q.flip}, {"cut", cut}};
+    e["error_change"] = q.error_change ? json(*q.error_change) : json(nullptr);
+    e["output_change"] = q.output_change ? json(*q.output_change) : json(nullptr);
+    if (svgf) e["replaced_samples"] = replaced;
+    frames.push_back(e);
+    if (std::isfinite(q.psnr)) {
+      sums[0] += q.psnr;
+      ++finite_psnr;
+    }
+    sums[1] += q.ssim;
+    sums[2] += q.relmse;
+    sums[3] += q.flip;
+    if (q.error_change) {
+      temporal[0] += *q.error_change;
+      ++n_temporal[0];
+    }
+    if (q.output_change) {
+      temporal[1] += *q.output_change;
+      ++n_temporal[1];
+    }
+  }
+  const double n = static_cast<double>(fs.frames.size());
+  json j;
+  j["config"] = config_json(c);
+  j["label"] = c.label();
+  j["key"] = c.key();
+  j["scene"] = fs.scene;
+  j["input"] = fs.description;
+  j["width"] = fs.width;
+  j["height"] = fs.height;
+  j["frames"] = frames;
+  j["mean"] = {
+      {"psnr", finite_psnr ? json(sums[0] / finite_psnr) : json(nullptr)},
+      {"ssim", sums[1] / n},
+      {"relmse", sums[2] / n},
+      {"flip", sums[3] / n},
+      {"error_change", n_temporal[0] ? json(temporal[0] / n_temporal[0]) : json(nullptr)},
+      {"output_change", n_temporal[1] ? json(temporal[1] / n_temporal[1]) : json(nullptr)}};
+  return j;
+}
+
+void print_timing(const json& e, std::FILE* f) {
+  const json& in = e["input"];
+  std::fprintf(f, "\n%s | %s\n  %s, %d timed frames after %d warm-up\n",
+               e["label"].get<std::string>().c_str(), e["description"].get<std::string>().c_str(),
+               in["description"].get<std::string>().c_str(), e["frames"].get<int>(),
+               e["warmup"].get<int>());
+  std::fprintf(f, "  %-12s %9s %9s %9s %8s %8s %6s %8s %9s %7s\n", "stage", "median ms", "p95 ms",
+               "MP/s", "B/px", "GB/s", "%copy", "ops/px", "floor ms", "xfloor");
+  for (const json& s : e["stages"]) {
+    const double bpx =
+        s["bytes_read_per_px"].get<double>() + s["bytes_written_per_px"].get<double>();
+    if (s["host_link"].get<bool>()) {
+      std::fprintf(f, "  %-12s %9.3f %9.3f %9.0f %8.0f %8.1f %6s %8s %9s %7s\n",
+                   s["stage"].get<std::string>().c_str(), s["ms"]["median"].get<double>(),
+                   s["ms"]["p95"].get<double>(), s["mpix_per_s"].get<double>(), bpx,
+                   s["achieved_gbs"].get<double>(), "link", "-", "-", "-");
+      continue;
+    }
+    std::fprintf(f, "  %-12s %9.3f %9.3f %9.0f %8.0f %8.1f %6.1f %8.0f %9.4f %7.2f\n",
+                 s["stage"].get<std::string>().c_str(), s["ms"]["median"].get<double>(),
+                 s["ms"]["p95"].get<double>(), s["mpix_per_s"].get<double>(), bpx,
+                 s["achieved_gbs"].get<double>(), s["pct_of_copy_bw"].get<double>(),
+                 s["ops_per_px"].get<double>(), s["floor"]["floor_ms"].get<double>(),
+                 s["floor"]["ratio"].get<double>());
+  }
+  const json& fm = e["frame_ms"];
+  std::fprintf(f, "  %-12s %9.3f %9.3f %9.0f", "frame", fm["filter"]["median"].get<double>(),
+               fm["filter"]["p95"].get<double>(), e["frame_mpix_per_s"].get<double>());
+  if (e.contains("floor"))
+    std::fprintf(f, " %8.0f %8.1f %6s %8.0f %9.4f %7.2f", e["floor"]["bytes_per_px"].get<double>(),
+                 e["floor"]["frame_achieved_gbs"].get<double>(), "",
+                 e["floor"]["ops_per_px"].get<double>(), e["floor"]["floor_ms"].get<double>(),
+                 e["floor"]["ratio"].get<double>());
+  std::fprintf(f, "\n  %-12s %9.3f %9.3f   (denoise() call, host clock)\n", "frame wall",
+               fm["wall"]["median"].get<double>(), fm["wall"]["p95"].get<double>());
+  if (e.contains("peak_device_bytes"))
+    std::fprintf(f, "  peak device memory %.1f MiB\n",
+                 static_cast<double>(e["peak_device_bytes"].get<size_t>()) / (1 << 20));
+  std::fprintf(f,
+               "  load average %.2f before, %.2f after; other processes used %.0f%% of the CPUs "
+               "while timing\n",
+               e["load_before"][0].get<double>(), e["load_after"][0].get<double>(),
+               100 * e.value("others_cpu_share", 0.0));
+  std::fflush(f);
+}
+
+void print_quality(const json& e, std::FILE* f) {
+  const json& m = e["mean"];
+  auto num = [](const json& v) { return v.is_null() ? std::nan("") : v.get<double>(); };
+  std::fprintf(f,
+               "  %-34s %-16s PSNR %6.2f dB  SSIM %.4f  relMSE %8.4f  FLIP %.4f  "
+               "err-change %.5f  out-change %.5f\n",
+               e["label"].get<std::string>().c_str(), e["scene"].get<std::string>().c_str(),
+               num(m["psnr"]), num(m["ssim"]), num(m["relmse"]), num(m["flip"]),
+               num(m["error_change"]), num(m["output_change"]));
+  std::fflush(f);
+}
+
+}  // namespace svgf::bench

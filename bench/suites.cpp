@@ -1,0 +1,422 @@
+#include "bench/suites.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <stdexcept>
+#include <thread>
+
+#include "bench/gpu_probe.h"
+#include "bench/host_probe.h"
+#include "io/atomic_file.h"
+
+namespace fs = std::filesystem;
+
+namespace svgf::bench {
+namespace {
+
+using json = nlohmann::json;
+
+std::string now_iso() {
+  const std::time_t t = std::time(nullptr);
+  char buf[64];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
+  return buf;
+}
+
+// A scene whose every pixel has a surface, to check the default scene's timings (whose frames are
+// 44% background at 16:9) against full coverage.
+const char* const kFullCoverageScene = "camera-pan";
+
+// The chart's SVGF configurations: iterations 1..6 with the default feedback tap (the first
+// iteration when there is only one), then every other tap at the default 4 iterations.
+std::vector<std::pair<int, int>> chart_params() {
+  std::vector<std::pair<int, int>> v;
+  for (int it = 1; it <= 6; ++it) v.push_back({it, it == 1 ? 0 : 1});
+  for (int tap : {-1, 0, 2, 3}) v.push_back({4, tap});
+  return v;
+}
+
+bool wanted(const SuiteOptions& o, const std::string& section) {
+  return o.sections.empty() ||
+         std::find(o.sections.begin(), o.sections.end(), section) != o.sections.end();
+}
+
+class SuiteWriter {
+ public:
+  SuiteWriter(const SuiteOptions& o, const std::vector<std::string>& sections) {
+    fs::create_directories(o.out_dir);
+    path_ = (fs::path(o.out_dir) / (o.name + ".json")).string();
+    if (fs::exists(path_)) {  // a rerun replaces the entries it measures again, keeps the rest
+      std::ifstream in(path_);
+      doc_ = json::parse(in, nullptr, false);
+      if (doc_.is_discarded() || doc_.value("suite", "") != o.name) doc_ = json::object();
+    }
+    for (const char* list : {"timings", "quality", "checks"})
+      if (!doc_.contains(list)) doc_[list] = json::array();
+    doc_["suite"] = o.name;
+    doc_["command"] = o.command;
+    if (!doc_.contains("sections")) doc_["sections"] = json::object();
+    for (const std::string& s : sections)
+      doc_["sections"][s] = {{"started", now_iso()}, {"command", o.command}};
+  }
+  json& doc() { return doc_; }
+  void add(const char* list, const std::string& group, json entry) {
+    entry["group"] = group;
+    json& v = doc_[list];
+    for (size_t i = 0; i < v.size(); ++i)
+      if (same_measurement(v[i], entry)) {
+        v.erase(i);
+        break;
+      }
+    v.push_back(std::move(entry));
+    save();
+  }
+  void finish_section(const std::string& s) {
+    doc_["sections"][s]["finished"] = now_iso();
+    save();
+  }
+  void save() {
+    const std::string text = doc_.dump(1) + "\n";
+    io::write_atomically(path_, [&](const std::string& tmp) { std::ofstream(tmp) << text; });
+  }
+  const std::string& path() const { return path_; }
+
+ private:
+  // The same group and configuration on the same input (size, or fixture scene), or the same
+  // check.
+  static bool same_measurement(const json& a, const json& b) {
+    if (a.value("group", "") != b.value("group", "") ||
+        a.value("label", "") != b.value("label", "") || a.value("name", "") != b.value("name", ""))
+      return false;
+    if (a.contains("scene") || b.contains("scene"))
+      return a.value("scene", "") == b.value("scene", "");
+    if (a.contains("input") && b.contains("input"))
+      return a["input"]["width"] == b["input"]["width"] &&
+             a["input"]["height"] == b["input"]["height"] &&
+             a["input"]["scene"] == b["input"]["scene"];
+    return true;
+  }
+  std::string path_;
+  json doc_;
+};
+
+json device_json(const DeviceInfo& d) {
+  if (!d.present) return {{"present", false}, {"why_absent", d.why_absent}};
+  return {{"present", true},
+          {"name", d.name},
+          {"driver_version", d.driver_version},
+          {"runtime_version", d.runtime_version},
+          {"compute_capability",
+           std::to_string(d.compute_major) + "." + std::to_string(d.compute_minor)},
+          {"sms", d.sms},
+          {"clock_mhz", d.clock_khz / 1000.0},
+          {"memory_clock_mhz", d.memory_clock_khz / 1000.0},
+          {"memory_bus_bits", d.memory_bus_bits},
+          {"l2_bytes", d.l2_bytes},
+          {"memory_bytes", d.memory_bytes},
+          {"memcpy_d2d_gbs", d.memcpy_gbs},
+          {"copy_kernel_gbs", d.copy_kernel_gbs},
+          {"fp32_ops_per_s", d.fp32_ops_per_s}};
+}
+
+json host_json(const HostInfo& h) {
+  return {{"cpu_model", h.cpu_model},
+          {"hardware_threads", h.hardware_threads},
+          {"hostname", h.hostname},
+          {"load", h.load}};
+}
+
+std::vector<std::string> sizes_of(const SuiteOptions& o) {
+  return o.sizes.empty() ? std::vector<std::string>{"256", "720p", "1080p", "4k"} : o.sizes;
+}
+
+// Frame sets by size, rendered (or read from the cache) once per suite.
+class FrameCache {
+ public:
+  explicit FrameCache(const SuiteOptions& o) : o_(o) {}
+  const FrameSet& get(const std::string& size) {
+    auto it = sets_.find(size);
+    if (it != sets_.end()) return it->second;
+    int w = 0, h = 0;
+    parse_size(size, w, h);
+    std::fprintf(stderr, "svgf-bench: frames for %s (%dx%d)\n", size.c_str(), w, h);
+    return sets_[size] = generate_frames(o_.scene, w, h, o_.distinct_frames, o_.cache_dir);
+  }
+  void drop(const std::string& size) { sets_.erase(size); }
+
+ private:
+  const SuiteOptions& o_;
+  std::map<std::string, FrameSet> sets_;
+};
+
+// A failing configuration is recorded and the suite goes on: one run on a lent GPU has to
+// bring back everything that did work.
+json failure(const RunConfig& c, const std::string& what, const std::exception& e) {
+  std::fprintf(stderr, "svgf-bench: %s %s failed: %s\n", c.label().c_str(), what.c_str(), e.what());
+  return {{"label", c.label()}, {"key", c.key()}, {"config", config_json(c)}, {"error", e.what()}};
+}
+
+void timed(SuiteWriter& w, const std::string& group, const RunConfig& c, const FrameSet& fs,
+           const TimingOptions& t, const Ceilings& ceilings) {
+  json e;
+  try {
+    e = time_run(c, fs, t, ceilings);
+    print_timing(e, stdout);
+  } catch (const std::exception& ex) {
+    e = failure(c, "timing at " + std::to_string(fs.width) + "x" + std::to_string(fs.height), ex);
+    e["input"] = {{"width", fs.width}, {"height", fs.height}, {"scene", fs.scene}};
+  }
+  w.add("timings", group, std::move(e));
+}
+
+void quality_all(SuiteWriter& w, const std::vector<RunConfig>& configs,
+                 const std::vector<FrameSet>& fixtures) {
+  for (const RunConfig& c : configs)
+    for (const FrameSet& f : fixtures) {
+      json e;
+      try {
+        e = quality_run(c, f);
+        print_quality(e, stdout);
+      } catch (const std::exception& ex) {
+        e = failure(c, "quality on " + f.scene, ex);
+        e["scene"] = f.scene;
+      }
+      w.add("quality", "quality", std::move(e));
+    }
+}
+
+std::vector<FrameSet> load_fixtures(const SuiteOptions& o) {
+  std::vector<FrameSet> sets;
+  for (const std::string& dir : fixture_dirs(o.fixtures_root)) {
+    FrameSet f = load_fixture(dir);
+    if (f.has_reference()) sets.push_back(std::move(f));
+  }
+  if (sets.empty())
+    std::fprintf(stderr, "svgf-bench: no fixtures with a reference under %s: quality skipped\n",
+                 o.fixtures_root.c_str());
+  return sets;
+}
+
+// Exact mode's promise, checked on the fixtures: the CUDA output has the CPU's bits.
+json bitwise_check(const std::vector<FrameSet>& fixtures) {
+  json j = {{"name", "cpu exact == cuda exact (it4 tap1, every fixture frame)"}};
+  size_t values = 0, differing = 0;
+  for (const FrameSet& f : fixtures) {
+    auto cpu = make_denoiser(svgf_config(Backend::Cpu, Mode::Exact, 4, 1, 0).denoiser);
+    auto gpu = make_denoiser(svgf_config(Backend::Cuda, Mode::Exact, 4, 1, 0).denoiser);
+    Image a, b;
+    for (int k = 0; k < static_cast<int>(f.frames.size()); ++k) {
+      if (f.is_cut(k)) {
+        cpu->reset();
+        gpu->reset();
+      }
+      cpu->denoise(f.frames[static_cast<size_t>(k)], a);
+      gpu->denoise(f.frames[static_cast<size_t>(k)], b);
+      for (size_t i = 0; i < a.data().size(); ++i) {
+        uint32_t x, y;
+        std::memcpy(&x, &a.data()[i], 4);
+        std::memcpy(&y, &b.data()[i], 4);
+        differing += x != y;
+      }
+      values += a.data().size();
+    }
+  }
+  j["values"] = values;
+  j["differing"] = differing;
+  j["equal"] = differing == 0;
+  std::printf("\ncheck: %s: %zu of %zu values differ\n", j["name"].get<std::string>().c_str(),
+              differing, values);
+  return j;
+}
+
+int run_cpu_suite(const SuiteOptions& o, SuiteWriter& w) {
+  const HostInfo host = query_host();
+  w.doc()["host"] = host_json(host);
+  const int all = std::max(1, host.hardware_threads);
+  std::vector<int> threads = {1};
+  if (all > 1) threads.push_back(all);
+  std::map<int, Ceilings> ceilings;
+  json cj = json::object();
+  for (int t : threads) {
+    Ceilings c;
+    c.copy_gbs = host_copy_gbs(t);
+    c.ops_per_s = host_float_ops_per_s(t);
+    c.copy_what = "memcpy of 256 MiB on " + std::to_string(t) + " thread(s)";
+    ceilings[t] = c;
+    cj[std::to_string(t)] = {{"copy_gbs", c.copy_gbs}, {"ops_per_s", c.ops_per_s}};
+    std::printf("host ceilings, %d thread(s): copy %.1f GB/s, float ops %.2f G/s\n", t, c.copy_gbs,
+                c.ops_per_s / 1e9);
+  }
+  w.doc()["ceilings"] = cj;
+  w.save();
+  FrameCache frames(o);
+
+  if (wanted(o, "sizes")) {
+    for (const std::string& size : sizes_of(o)) {
+      for (int t : threads)
+        timed(w, "sizes", svgf_config(Backend::Cpu, Mode::Exact, 4, 1, t), frames.get(size),
+              o.timing, ceilings[t]);
+      if (size != o.chart_size) frames.drop(size);  // 4K frame sets are large
+    }
+    w.finish_section("sizes");
+  }
+  if (wanted(o, "chart")) {
+    for (auto [it, tap] : chart_params())
+      timed(w, "chart", svgf_config(Backend::Cpu, Mode::Exact, it, tap, all),
+            frames.get(o.chart_size), o.timing, ceilings[all]);
+    w.finish_section("chart");
+  }
+  if (wanted(o, "coverage")) {  // every pixel a surface: camera-pan's closed room
+    const FrameSet room =
+        generate_frames(kFullCoverageScene, frames.get(o.chart_size).width,
+                        frames.get(o.chart_size).height, o.distinct_frames, o.cache_dir);
+    for (int t : threads)
+      timed(w, "coverage", svgf_config(Backend::Cpu, Mode::Exact, 4, 1, t), room, o.timing,
+            ceilings[t]);
+    w.finish_section("coverage");
+  }
+  if (wanted(o, "baselines") && baselines_available()) {
+    TimingOptions t = o.timing;
+    t.budget_s = o.baseline_budget_s;
+    for (const Baseline& b : default_baselines()) {
+      RunConfig c;
+      c.method = b.name;
+      c.baseline = b;
+      c.denoiser.threads = all;
+      timed(w, "baselines", c, frames.get(o.chart_size), t, ceilings[all]);
+    }
+    w.finish_section("baselines");
+  }
+  if (wanted(o, "quality")) {
+    const std::vector<FrameSet> fixtures = load_fixtures(o);
+    std::vector<RunConfig> configs;
+    RunConfig noisy;
+    noisy.method = "noisy";
+    configs.push_back(noisy);
+    for (auto [it, tap] : chart_params())
+      configs.push_back(svgf_config(Backend::Cpu, Mode::Exact, it, tap, all));
+    if (baselines_available())
+      for (const Baseline& b : default_baselines()) {
+        RunConfig c;
+        c.method = b.name;
+        c.baseline = b;
+        c.denoiser.threads = all;
+        configs.push_back(c);
+      }
+    quality_all(w, configs, fixtures);
+    w.finish_section("quality");
+  }
+  return 0;
+}
+
+int run_gpu_suite(const SuiteOptions& o, SuiteWriter& w) {
+  w.doc()["host"] = host_json(query_host());
+  DeviceInfo dev = query_device();
+  if (!dev.present) throw std::runtime_error("suite gpu: no CUDA device (" + dev.why_absent + ")");
+  std::string why;
+  if (!cuda_available(&why)) throw std::runtime_error("suite gpu: " + why);
+  measure_ceilings(dev);
+  w.doc()["device"] = device_json(dev);
+  w.save();
+  std::printf(
+      "device %s, %d SMs, driver %d: memcpy D2D %.0f GB/s, copy kernel %.0f GB/s, FP32 "
+      "%.1f Tops/s\n",
+      dev.name.c_str(), dev.sms, dev.driver_version, dev.memcpy_gbs, dev.copy_kernel_gbs,
+      dev.fp32_ops_per_s / 1e12);
+  Ceilings ceilings;
+  ceilings.copy_gbs = dev.memcpy_gbs;
+  ceilings.ops_per_s = dev.fp32_ops_per_s;
+  ceilings.copy_what = "cudaMemcpyAsync device to device, 1 GiB";
+  FrameCache frames(o);
+  const std::string it_size = o.iterations_size.empty() ? "1080p" : o.iterations_size;
+
+  if (wanted(o, "sizes")) {
+    for (const std::string& size : sizes_of(o)) {
+      for (Mode m : {Mode::Exact, Mode::Fast})
+        timed(w, "sizes", svgf_config(Backend::Cuda, m, 4, 1, 0), frames.get(size), o.timing,
+              ceilings);
+      if (size != o.chart_size && size != it_size) frames.drop(size);
+    }
+    w.finish_section("sizes");
+  }
+  if (wanted(o, "iterations")) {
+    for (Mode m : {Mode::Exact, Mode::Fast})
+      for (int it = 1; it <= 6; ++it)
+        timed(w, "iterations", svgf_config(Backend::Cuda, m, it, it == 1 ? 0 : 1, 0),
+              frames.get(it_size), o.timing, ceilings);
+    w.finish_section("iterations");
+  }
+  if (wanted(o, "coverage")) {  // every pixel a surface: camera-pan's closed room
+    int cw = 0, ch = 0;
+    parse_size(it_size, cw, ch);
+    const FrameSet room =
+        generate_frames(kFullCoverageScene, cw, ch, o.distinct_frames, o.cache_dir);
+    for (Mode m : {Mode::Exact, Mode::Fast})
+      timed(w, "coverage", svgf_config(Backend::Cuda, m, 4, 1, 0), room, o.timing, ceilings);
+    w.finish_section("coverage");
+  }
+  if (wanted(o, "blocks")) {  // launch shapes other than the default 16x8, at the same size
+    for (Mode m : {Mode::Exact, Mode::Fast})
+      for (const auto& [bx, by] :
+           std::vector<std::pair<int, int>>{{32, 8}, {32, 4}, {16, 16}, {64, 2}}) {
+        RunConfig c = svgf_config(Backend::Cuda, m, 4, 1, 0);
+        c.denoiser.block_x = bx;
+        c.denoiser.block_y = by;
+        timed(w, "blocks", c, frames.get(it_size), o.timing, ceilings);
+      }
+    w.finish_section("blocks");
+  }
+  if (wanted(o, "chart")) {
+    for (Mode m : {Mode::Exact, Mode::Fast})
+      for (auto [it, tap] : chart_params())
+        timed(w, "chart", svgf_config(Backend::Cuda, m, it, tap, 0), frames.get(o.chart_size),
+              o.timing, ceilings);
+    w.finish_section("chart");
+  }
+  if (wanted(o, "quality")) {
+    const std::vector<FrameSet> fixtures = load_fixtures(o);
+    if (!fixtures.empty()) {
+      try {
+        w.add("checks", "quality", bitwise_check(fixtures));
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "svgf-bench: bitwise check failed: %s\n", e.what());
+      }
+      std::vector<RunConfig> configs;
+      for (Mode m : {Mode::Exact, Mode::Fast})
+        for (auto [it, tap] : chart_params())
+          configs.push_back(svgf_config(Backend::Cuda, m, it, tap, 0));
+      quality_all(w, configs, fixtures);
+    }
+    w.finish_section("quality");
+  }
+  return 0;
+}
+
+}  // namespace
+
+std::vector<std::string> suite_sections(const std::string& name) {
+  if (name == "cpu") return {"sizes", "chart", "coverage", "baselines", "quality"};
+  if (name == "gpu") return {"sizes", "iterations", "coverage", "blocks", "chart", "quality"};
+  throw std::invalid_argument("unknown suite '" + name + "' (known: cpu, gpu)");
+}
+
+int run_suite(const SuiteOptions& o) {
+  const std::vector<std::string> all = suite_sections(o.name);
+  for (const std::string& s : o.sections)
+    if (std::find(all.begin(), all.end(), s) == all.end())
+      throw std::invalid_argument("suite " + o.name + " has no section '" + s + "'");
+  SuiteWriter w(o, o.sections.empty() ? all : o.sections);
+  const int rc = o.name == "cpu" ? run_cpu_suite(o, w) : run_gpu_suite(o, w);
+  w.doc()["finished"] = now_iso();
+  w.save();
+  std::printf("\nwrote %s\n", w.path().c_str());
+  return rc;
+}
+
+}  // namespace svgf::bench

@@ -1,0 +1,32 @@
+#pragma once
+// The predefined benchmark suites behind docs/benchmarks.md: every size, mode, iteration count,
+// thread count, baseline and fixture the charts and tables need, in one process.
+#include <string>
+#include <vector>
+
+#include "bench/runner.h"
+
+namespace svgf::bench {
+
+struct SuiteOptions {
+  std::string name;     // cpu, gpu
+  std::string out_dir;  // <out_dir>/<name>.json (sections rerun replace their old entries)
+  std::string fixtures_root;
+  std::string cache_dir;  // rendered frames; empty: none
+  std::string scene = "cornell-moving";
+  int distinct_frames = 8;
+  std::vector<std::string> sections;  // empty: all of the suite's
+  std::vector<std::string> sizes;     // empty: 256, 720p, 1080p, 4k
+  std::string chart_size = "720p";
+  std::string iterations_size;  // empty: 720p on the CPU, 1080p on the GPU
+  TimingOptions timing;
+  double baseline_budget_s = 120;
+  std::string command;  // how the suite was invoked, for the report
+};
+
+// Sections: cpu: sizes, chart, coverage, baselines, quality; gpu: sizes, iterations, coverage,
+// blocks, chart, quality.
+std::vector<std::string> suite_sections(const std::string& name);
+int run_suite(const SuiteOptions& options);
+
+}  // namespace svgf::bench
