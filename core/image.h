@@ -20,6 +20,13 @@ class Image {
       throw std::invalid_argument("Image: negative size");
   }
 
+  // Gives the image this shape, reallocating (zero-filled) only when the shape differs; otherwise
+  // the contents stay as they were. For outputs that are fully overwritten every frame.
+  void ensure_shape(int width, int height, int channels) {
+    if (width != width_ || height != height_ || channels != channels_)
+      *this = Image(width, height, channels);
+  }
+
   int width() const { return width_; }
   int height() const { return height_; }
   int channels() const { return channels_; }

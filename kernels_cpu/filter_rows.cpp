@@ -230,24 +230,15 @@ void atrous_row(const AtrousKernel& k, const float* __restrict lum, int y, RowSc
 
 // --- spatial variance estimate -----------------------------------------------------------------
 
+// The 7x7 estimate for the pixels lo..hi of row y (the centre terms and the taps; the caller
+// selects which results to keep).
 template <class Power>
-void variance_row(const VarianceKernel& k, const float* __restrict lum, int y, RowScratch& s,
-                  const Power& power) {
+void variance_span(const VarianceKernel& k, const float* __restrict lum, int y, int lo, int hi,
+                   RowScratch& s, const Power& power) {
   const GuideView& g = k.guides;
   const SvgfParams& p = k.params;
   const int w = g.width, h = g.height, row = y * w;
   const float young = static_cast<float>(p.spatial_variance_history);
-  bool any = false;
-  for (int x = 0; x < w; ++x)
-    any = any || (k.history[row + x] < young && g.is_surface(row + x));
-  if (!any) {  // every pixel passes through: skip the 7x7 work for this row
-    for (int x = 0; x < w; ++x) {
-      const int i = row + x;
-      k.out.color.store(i, k.accumulated.color.load(i));
-      k.out.variance[i] = k.accumulated.variance[i];
-    }
-    return;
-  }
   float* __restrict inv_phi_z = s.a.data();
   float* __restrict sw = s.sw.data();
   float* __restrict sr = s.s0.data();
@@ -255,45 +246,63 @@ void variance_row(const VarianceKernel& k, const float* __restrict lum, int y, R
   float* __restrict sb = s.s2.data();
   float* __restrict sm1 = s.s3.data();
   float* __restrict sm2 = s.b.data();
-  for (int x = 0; x < w; ++x) {
+  for (int x = lo; x < hi; ++x) {
     inv_phi_z[x] = 1.f / (p.spatial_variance_phi_depth *
-                      max_f(g.depth_fwidth(row + x), p.depth_gradient_floor));
+                          max_f(g.depth_fwidth(row + x), p.depth_gradient_floor));
     sw[x] = sr[x] = sg[x] = sb[x] = sm1[x] = sm2[x] = 0.f;
   }
-  const float* __restrict depth = g.depth;
-  const float* __restrict nx = g.normal.r;
-  const float* __restrict ny = g.normal.g;
-  const float* __restrict nz = g.normal.b;
-  const float* __restrict cr = k.accumulated.color.r;
-  const float* __restrict cg = k.accumulated.color.g;
-  const float* __restrict cb = k.accumulated.color.b;
-  const float* __restrict m1_in = k.moment1;
-  const float* __restrict m2_in = k.moment2;
   const float inv_phi_l = 1.f / p.phi_color;
   const int r = p.spatial_variance_radius;
   for (int dy = -r; dy <= r; ++dy) {
     const int yq = y + dy;
     if (yq < 0 || yq >= h) continue;
     for (int dx = -r; dx <= r; ++dx) {
-      const int x0 = std::max(0, -dx), x1 = std::min(w, w - dx);
-      const float inv_dist = inv_tap_distance(dx, dy, 1);
-      variance_tap(depth, nx, ny, nz, lum, cr, cg, cb, m1_in, m2_in, inv_phi_z, inv_phi_l, sw, sr, sg,
-                   sb, sm1, sm2, row, dy * w + dx, x0, x1, inv_dist, power);
+      const int x0 = std::max(lo, -dx), x1 = std::min(hi, w - dx);
+      variance_tap(g.depth, g.normal.r, g.normal.g, g.normal.b, lum, k.accumulated.color.r,
+                   k.accumulated.color.g, k.accumulated.color.b, k.moment1, k.moment2, inv_phi_z,
+                   inv_phi_l, sw, sr, sg, sb, sm1, sm2, row, dy * w + dx, x0, x1,
+                   inv_tap_distance(dx, dy, 1), power);
     }
   }
-  for (int x = 0; x < w; ++x) {
+  for (int x = lo; x < hi; ++x) {
     const int i = row + x;
     const float hist = k.history[i];
-    if (!(hist < young) || !g.is_surface(i)) {
-      k.out.color.store(i, k.accumulated.color.load(i));
-      k.out.variance[i] = k.accumulated.variance[i];
-      continue;
-    }
+    if (!(hist < young) || !g.is_surface(i)) continue;  // passed through by the caller
     const float ws = max_f(sw[x], 1e-6f);
     const float m1 = sm1[x] / ws, m2 = sm2[x] / ws;
     k.out.color.store(i, make_vec3(sr[x] / ws, sg[x] / ws, sb[x] / ws));
     k.out.variance[i] = max_f(0.f, m2 - m1 * m1) * (young / hist);
   }
+}
+
+template <class Power>
+void variance_row(const VarianceKernel& k, const float* __restrict lum, int y, RowScratch& s,
+                  const Power& power) {
+  const GuideView& g = k.guides;
+  const int w = g.width, row = y * w;
+  const float young = static_cast<float>(k.params.spatial_variance_history);
+  for (int x = 0; x < w; ++x) {  // pass-through; the estimate overwrites young pixels below
+    const int i = row + x;
+    k.out.color.store(i, k.accumulated.color.load(i));
+    k.out.variance[i] = k.accumulated.variance[i];
+  }
+  // The 7x7 work runs only over runs of pixels that need it (young history on a surface): after
+  // a disocclusion, or at the edge a camera pan uncovers, they are short. Runs closer than
+  // kGap pixels share one span (fewer, longer vector loops).
+  constexpr int kGap = 16;
+  int lo = -1, hi = -1;
+  for (int x = 0; x <= w; ++x) {
+    const bool needs = x < w && k.history[row + x] < young && g.is_surface(row + x);
+    if (needs) {
+      if (lo >= 0 && x - hi >= kGap) {
+        variance_span(k, lum, y, lo, hi, s, power);
+        lo = -1;
+      }
+      if (lo < 0) lo = x;
+      hi = x + 1;
+    }
+  }
+  if (lo >= 0) variance_span(k, lum, y, lo, hi, s, power);
 }
 
 // Luminance of every pixel of `color`, once per stage instead of once per tap.

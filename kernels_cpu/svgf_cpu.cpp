@@ -19,7 +19,7 @@ class SvgfCpuDenoiser final : public Denoiser {
   void denoise(const Frame& in, Image& out) override {
     check_frame_consistent(in);
     ensure_size(in.width(), in.height());
-    out = Image(width_, height_, 3);
+    out.ensure_shape(width_, height_, 3);  // every pixel is written by remodulate
     engine_.begin_frame();
 
     const int prev = slot_;

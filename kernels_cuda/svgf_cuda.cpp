@@ -107,7 +107,7 @@ class SvgfCudaDenoiser final : public Denoiser {
     engine_.mark(Stage::Download, "download");
     output_.download_async(staging_out_.get(), 3 * n, engine_.stream());
     engine_.end_frame();  // waits; raises any fault of this frame's kernels
-    out = Image(width_, height_, 3);
+    out.ensure_shape(width_, height_, 3);  // overwritten whole by the copy below
     std::memcpy(out.data().data(), staging_out_.get(), 3 * n * sizeof(float));
 
     input_slot_ = 1 - cur;
