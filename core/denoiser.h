@@ -2,6 +2,7 @@
 // The one interface every method and backend sits behind (docs/architecture.md).
 #include <cstdint>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 #include "core/frame.h"
@@ -61,6 +62,15 @@ class Denoiser {
   virtual std::string description() const = 0;
   virtual Image read_buffer(DebugBuffer which) const = 0;
 };
+
+// Every backend's rule for a sequence: all frames have the first frame's size. A denoiser that
+// has seen a width x height frame (0 x 0: none yet) throws std::invalid_argument for another.
+inline void check_frame_size_unchanged(int width, int height, int w, int h) {
+  if (width == 0 || (w == width && h == height)) return;
+  throw std::invalid_argument("frame size changed mid-sequence from " + std::to_string(width) +
+                              "x" + std::to_string(height) + " to " + std::to_string(w) + "x" +
+                              std::to_string(h) + " (use a new denoiser for a new sequence)");
+}
 
 // Throws std::invalid_argument for an impossible combination (fast mode on the CPU) and
 // std::runtime_error when CUDA is asked for but absent. Backend::Auto never throws for lack of

@@ -107,11 +107,7 @@ class SvgfCpuDenoiser final : public Denoiser {
 
   void ensure_size(int w, int h) {
     if (w == width_ && h == height_) return;
-    if (width_ != 0)
-      throw std::invalid_argument("frame size changed mid-sequence from " +
-                                  std::to_string(width_) + "x" + std::to_string(height_) +
-                                  " to " + std::to_string(w) + "x" + std::to_string(h) +
-                                  " (use a new denoiser for a new sequence)");
+    check_frame_size_unchanged(width_, height_, w, h);
     width_ = w;
     height_ = h;
     prev_guides_.allocate(w, h);

@@ -192,11 +192,7 @@ class SvgfCudaDenoiser final : public Denoiser {
 
   void ensure_size(int w, int h) {
     if (w == width_ && h == height_) return;
-    if (width_ != 0)
-      throw std::invalid_argument("frame size changed mid-sequence from " +
-                                  std::to_string(width_) + "x" + std::to_string(height_) +
-                                  " to " + std::to_string(w) + "x" + std::to_string(h) +
-                                  " (use a new denoiser for a new sequence)");
+    check_frame_size_unchanged(width_, height_, w, h);
     const size_t n = static_cast<size_t>(w) * static_cast<size_t>(h);
     // Every allocation's error names the buffer and what the whole frame size needs.
     const std::string need = " (" + std::to_string(w) + "x" + std::to_string(h) +
