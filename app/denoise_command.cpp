@@ -13,7 +13,7 @@
 
 #include "app/options.h"
 #include "app/progress_bar.h"
-#include "core/denoiser.h"
+#include "pipeline/make_denoiser.h"
 #include "core/tonemap.h"
 #include "io/atomic_file.h"
 #include "io/exr_frame.h"
@@ -34,7 +34,7 @@ const char* const kDenoiseUsage =
     "and report.csv (per-frame time, replaced samples, PSNR and relMSE against the reference).\n"
     "\n"
     "options:\n"
-    "  --method svgf             denoising method (default svgf)\n"
+    "  --method svgf|gaussian    denoising method (default svgf)\n"
     "  --backend cpu|cuda|auto   where to run (default auto: CUDA if a device is present)\n"
     "  --mode exact|fast         exact: bitwise CPU == GPU; fast: GPU only (default exact)\n"
     "  --threads N               CPU threads, 0 = all cores (default 0)\n"
@@ -45,7 +45,9 @@ const char* const kDenoiseUsage =
     "  --moments-alpha A         moments temporal blend floor (default 0.2)\n"
     "  --phi-color X             luminance edge-stopping (default 10)\n"
     "  --phi-normal X            normal edge-stopping exponent (default 128)\n"
-    "  --phi-depth X             depth edge-stopping (default 1)\n"
+    "  --phi-depth X             depth edge-stopping, 0 = no depth term (default 1)\n"
+    "  --sigma S                 gaussian: standard deviation in pixels (default 2)\n"
+    "  --radius R                gaussian: taps either side, 0 = ceil(3 sigma) (default 0)\n"
     "  --exposure E              preview exposure (default 1)\n"
     "  --no-preview              skip the PNG previews\n";
 
@@ -67,6 +69,18 @@ DenoiserConfig config_from(const Options& o) {
   p.phi_depth = o.get_float("phi-depth", p.phi_depth);
   if (!(p.alpha > 0.f && p.alpha <= 1.f) || !(p.moments_alpha > 0.f && p.moments_alpha <= 1.f))
     throw UsageError("--alpha and --moments-alpha must lie in (0, 1]");
+  const auto finite_at_least = [](float v, float lo) { return std::isfinite(v) && v >= lo; };
+  if (!finite_at_least(p.phi_depth, 0.f) || !finite_at_least(p.phi_normal, 0.f) ||
+      !(finite_at_least(p.phi_color, 0.f) && p.phi_color > 0.f))
+    throw UsageError("--phi-depth and --phi-normal must be finite and >= 0, --phi-color > 0");
+  GaussianParams& g = c.gaussian;
+  g.sigma = o.get_float("sigma", g.sigma);
+  g.radius = o.get_int("radius", g.radius, 0, 1024);
+  try {
+    g.validate();
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
   return c;
 }
 
@@ -97,7 +111,8 @@ std::string fixed(double v, int digits) {
 int denoise_command(const std::vector<std::string>& args) {
   const Options o(args,
                   {"method", "backend", "mode", "threads", "frames", "iterations", "feedback-tap",
-                   "alpha", "moments-alpha", "phi-color", "phi-normal", "phi-depth", "exposure"},
+                   "alpha", "moments-alpha", "phi-color", "phi-normal", "phi-depth", "sigma",
+                   "radius", "exposure"},
                   {"no-preview", "help"});
   if (o.has("help")) {
     std::fputs(kDenoiseUsage, stdout);
@@ -160,7 +175,7 @@ int denoise_command(const std::vector<std::string>& args) {
     fr["frame"] = k;
     fr["time_ms"] = ms;
     fr["filter_ms"] = r.times.filter_ms();
-    for (int s = 0; s < kStageCount; ++s) fr["stage_ms"][stage_name(static_cast<Stage>(s))] = r.times.ms[s];
+    for (const auto& [stage, stage_ms] : r.times.entries()) fr["stage_ms"][stage] = stage_ms;
     fr["replaced_samples"] = r.replaced_samples;
     csv << k << ',' << ms << ',' << r.times.filter_ms() << ',' << r.replaced_samples;
     std::string detail = fixed(ms, 1) + " ms";

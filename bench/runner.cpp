@@ -157,7 +157,7 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
     if (svgf) {
       const StageTimes& st = den->last_report().times;
       for (int s = 0; s < kStageCount; ++s)
-        stage_ms[static_cast<size_t>(s)].push_back(st.ms[static_cast<size_t>(s)]);
+        stage_ms[static_cast<size_t>(s)].push_back(st[stage_name(static_cast<Stage>(s))]);
       filter_ms.push_back(st.filter_ms());
     } else {
       filter_ms.push_back(wall);

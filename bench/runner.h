@@ -8,7 +8,7 @@
 
 #include "bench/baselines.h"
 #include "bench/workload.h"
-#include "core/denoiser.h"
+#include "pipeline/make_denoiser.h"
 
 namespace svgf::bench {
 

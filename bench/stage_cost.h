@@ -5,11 +5,31 @@
 // floating-point operations.
 #include <string>
 
-#include "core/denoiser.h"
-#include "core/params.h"
 #include "core/stage_times.h"
+#include "methods/svgf/params.h"
+#include "methods/svgf/stages.h"
+#include "pipeline/make_denoiser.h"
 
 namespace svgf::bench {
+
+// SVGF's stages (methods/svgf/stages.h) and the CUDA engine's transfers, as the cost model
+// indexes them.
+enum class Stage : int { Demodulate = 0, Reproject, Variance, Atrous, Feedback, Remodulate,
+                         Upload, Download, Count };
+constexpr int kStageCount = static_cast<int>(Stage::Count);
+inline const char* stage_name(Stage s) {
+  switch (s) {
+    case Stage::Demodulate: return svgf_stage::kDemodulate;
+    case Stage::Reproject: return svgf_stage::kReproject;
+    case Stage::Variance: return svgf_stage::kVariance;
+    case Stage::Atrous: return svgf_stage::kAtrous;
+    case Stage::Feedback: return svgf_stage::kFeedback;
+    case Stage::Remodulate: return svgf_stage::kRemodulate;
+    case Stage::Upload: return kUploadStage;
+    case Stage::Download: return kDownloadStage;
+    default: return "?";
+  }
+}
 
 struct StageCost {
   double read = 0;     // bytes read from memory per pixel, each plane once

@@ -1,36 +1,34 @@
 #pragma once
-// The one interface every method and backend sits behind (docs/architecture.md).
+// The one interface every method and backend sits behind (docs/architecture.md). Method-neutral:
+// a method names its own stages and debug buffers; pipeline/make_denoiser.h picks the method.
 #include <cstdint>
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "core/frame.h"
 #include "core/image.h"
-#include "core/params.h"
 #include "core/stage_times.h"
 
 namespace svgf {
 
-enum class Method { Svgf };
 enum class Backend { Cpu, Cuda, Auto };  // Auto: CUDA when a device is present, else CPU
 enum class Mode { Exact, Fast };         // Fast exists on CUDA only
 
-const char* to_string(Method m);
 const char* to_string(Backend b);
 const char* to_string(Mode m);
-// Parse "svgf", "cpu|cuda|auto", "exact|fast"; throw std::invalid_argument naming the value.
-Method parse_method(const std::string& s);
+// Parse "cpu|cuda|auto", "exact|fast"; throw std::invalid_argument naming the value.
 Backend parse_backend(const std::string& s);
 Mode parse_mode(const std::string& s);
 
-struct DenoiserConfig {
-  Method method = Method::Svgf;
+// Where and how a method runs: the same for every method.
+struct EngineConfig {
   Backend backend = Backend::Cpu;
   Mode mode = Mode::Exact;
-  SvgfParams svgf;
-  int threads = 0;      // CPU worker threads; 0: all cores
-  int block_x = 16;     // CUDA block shape (any shape gives the same bits)
+  int threads = 0;   // CPU worker threads; 0: all cores
+  int block_x = 16;  // CUDA block shape (any shape gives the same bits)
   int block_y = 8;
 };
 
@@ -38,15 +36,6 @@ struct DenoiserConfig {
 struct FrameReport {
   StageTimes times;
   int64_t replaced_samples = 0;  // color samples that were NaN, Inf or negative (set to 0)
-};
-
-// Internal buffers a caller may read back, for tests and tools.
-enum class DebugBuffer {
-  Illumination,     // 3: demodulated input
-  Accumulated,      // 4: temporally accumulated color + temporal variance
-  Moments,          // 2: E[l], E[l^2] after accumulation
-  HistoryLength,    // 1
-  ColorHistory,     // 3: what the next frame reprojects (the feedback tap)
 };
 
 // One denoiser per sequence: it owns the history. Frames must all have the first frame's size.
@@ -60,7 +49,12 @@ class Denoiser {
   virtual const FrameReport& last_report() const = 0;
   // E.g. "svgf cpu exact, 2 threads" or "svgf cuda fast, NVIDIA H100 80GB HBM3".
   virtual std::string description() const = 0;
-  virtual Image read_buffer(DebugBuffer which) const = 0;
+  // The method's stages, in the order a frame runs them (names used in last_report().times).
+  virtual std::vector<std::string> stages() const = 0;
+  // Internal buffers a caller may read back by name, for tests and tools.
+  virtual std::vector<std::string> debug_buffers() const = 0;
+  // Empty before the first frame; std::invalid_argument for a name not in debug_buffers().
+  virtual Image read_buffer(std::string_view name) const = 0;
 };
 
 // Every backend's rule for a sequence: all frames have the first frame's size. A denoiser that
@@ -72,12 +66,12 @@ inline void check_frame_size_unchanged(int width, int height, int w, int h) {
                               std::to_string(h) + " (use a new denoiser for a new sequence)");
 }
 
-// Throws std::invalid_argument for an impossible combination (fast mode on the CPU) and
-// std::runtime_error when CUDA is asked for but absent. Backend::Auto never throws for lack of
-// a device: it falls back to the CPU, and description() says which it chose.
-std::unique_ptr<Denoiser> make_denoiser(const DenoiserConfig& config);
-
-// True when this build has the CUDA backend and a CUDA device is present.
-bool cuda_available(std::string* why_not = nullptr);
+inline std::invalid_argument unknown_buffer(std::string_view method, std::string_view name,
+                                            const std::vector<std::string>& known) {
+  std::string list;
+  for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
+  return std::invalid_argument(std::string(method) + ": no debug buffer '" + std::string(name) +
+                               "' (known: " + list + ")");
+}
 
 }  // namespace svgf

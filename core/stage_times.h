@@ -1,48 +1,51 @@
 #pragma once
-// Names of the pipeline's stages, for timings and reports.
-#include <array>
+// Time spent per stage of one frame, keyed by the stage's name. Core knows no method: each
+// method names its own stages (e.g. methods/svgf/stages.h) and the engines record whatever name
+// they are given. The transfers between host and device are the engines' own two stages.
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace svgf {
 
-enum class Stage : int {
-  Demodulate = 0,
-  Reproject,
-  Variance,
-  Atrous,      // all a-trous iterations together
-  Feedback,    // copying the feedback tap into the color history
-  Remodulate,
-  Upload,      // host -> device (CUDA only)
-  Download,    // device -> host (CUDA only)
-  Count
-};
+// The engines' own stages (CUDA only): host -> device and device -> host.
+inline constexpr const char* kUploadStage = "upload";
+inline constexpr const char* kDownloadStage = "download";
 
-inline const char* stage_name(Stage s) {
-  switch (s) {
-    case Stage::Demodulate: return "demodulate";
-    case Stage::Reproject: return "reproject";
-    case Stage::Variance: return "variance";
-    case Stage::Atrous: return "atrous";
-    case Stage::Feedback: return "feedback";
-    case Stage::Remodulate: return "remodulate";
-    case Stage::Upload: return "upload";
-    case Stage::Download: return "download";
-    default: return "?";
-  }
+inline bool is_transfer_stage(const std::string& name) {
+  return name == kUploadStage || name == kDownloadStage;
 }
 
-constexpr int kStageCount = static_cast<int>(Stage::Count);
-
-// Milliseconds spent in each stage during one frame.
-struct StageTimes {
-  std::array<double, kStageCount> ms{};
-  double& operator[](Stage s) { return ms[static_cast<int>(s)]; }
-  double operator[](Stage s) const { return ms[static_cast<int>(s)]; }
+// Milliseconds per stage, in the order the stages first ran (a stage run several times, like
+// the a-trous iterations, adds up under one name).
+class StageTimes {
+ public:
+  void add(const char* stage, double ms) {
+    for (auto& e : entries_)
+      if (e.first == stage) {
+        e.second += ms;
+        return;
+      }
+    entries_.emplace_back(stage, ms);
+  }
+  // 0 for a stage that did not run.
+  double operator[](const std::string& stage) const {
+    for (const auto& e : entries_)
+      if (e.first == stage) return e.second;
+    return 0.0;
+  }
+  const std::vector<std::pair<std::string, double>>& entries() const { return entries_; }
   // Sum of the filtering stages, transfers excluded.
   double filter_ms() const {
     double t = 0;
-    for (int s = 0; s < static_cast<int>(Stage::Upload); ++s) t += ms[s];
+    for (const auto& e : entries_)
+      if (!is_transfer_stage(e.first)) t += e.second;
     return t;
   }
+  void clear() { entries_.clear(); }
+
+ private:
+  std::vector<std::pair<std::string, double>> entries_;
 };
 
 }  // namespace svgf

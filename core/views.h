@@ -30,8 +30,15 @@ struct Rgb {
 using RgbView = Rgb<float>;
 using ConstRgbView = Rgb<const float>;
 
-// Illumination with its variance in a fourth plane: what flows between the variance estimate
-// and the a-trous iterations (the variance is filtered alongside the color, paper Eq. 5).
+// A color with its variance: one pixel of what flows between the variance estimate and the
+// a-trous iterations (the variance is filtered alongside the color, paper Eq. 5).
+struct ColorVar {
+  Vec3 color;
+  float variance = 0.f;
+};
+SVGF_HD ColorVar make_color_var(Vec3 c, float v) { ColorVar cv; cv.color = c; cv.variance = v; return cv; }
+
+// Storage layout 1: color and variance in four separate planes.
 template <class T>
 struct IllumVar {
   Rgb<T> color;
@@ -41,9 +48,51 @@ struct IllumVar {
   template <class U, class = std::enable_if_t<std::is_same<const U, T>::value &&
                                               !std::is_same<U, T>::value>>
   SVGF_HD IllumVar(const IllumVar<U>& o) : color(o.color), variance(o.variance) {}
+  SVGF_HD ColorVar load(int i) const { return make_color_var(color.load(i), variance[i]); }
+  SVGF_HD void store(int i, ColorVar v) const { color.store(i, v.color); variance[i] = v.variance; }
 };
 using IllumVarView = IllumVar<float>;
 using ConstIllumVarView = IllumVar<const float>;
+
+// Four floats loaded and stored as one 16-byte access.
+struct alignas(16) Packed4 {
+  float x, y, z, w;
+};
+SVGF_HD Packed4 load_packed(const Packed4* p, int i) {
+#if defined(__CUDA_ARCH__)
+  const float4 v = reinterpret_cast<const float4*>(p)[i];
+  Packed4 r; r.x = v.x; r.y = v.y; r.z = v.z; r.w = v.w;
+  return r;
+#else
+  return p[i];
+#endif
+}
+
+// Storage layout 2: color and variance packed as r, g, b, variance in one Packed4 per pixel
+// (fast mode: one 16-byte load per a-trous tap instead of four). T is Packed4 or const Packed4.
+template <class T>
+struct PackedIllumVar {
+  T* data = nullptr;
+  PackedIllumVar() = default;
+  SVGF_HD explicit PackedIllumVar(T* d) : data(d) {}
+  template <class U, class = std::enable_if_t<std::is_same<const U, T>::value &&
+                                              !std::is_same<U, T>::value>>
+  SVGF_HD PackedIllumVar(const PackedIllumVar<U>& o) : data(o.data) {}
+  SVGF_HD ColorVar load(int i) const {
+    const Packed4 p = load_packed(data, i);
+    return make_color_var(make_vec3(p.x, p.y, p.z), p.w);
+  }
+  SVGF_HD void store(int i, ColorVar v) const {
+    Packed4 p; p.x = v.color.x; p.y = v.color.y; p.z = v.color.z; p.w = v.variance;
+    data[i] = p;
+  }
+};
+
+// What the edge-stopping tests read of a pixel's guides.
+struct DepthNormal {
+  float depth;
+  Vec3 normal;
+};
 
 // The G-buffer of one frame as the filters read it. Background pixels (no surface) have
 // depth <= 0; every test below treats them, and NaN depth, as "no surface".
@@ -63,6 +112,26 @@ struct GuideView {
   // Largest absolute screen-space depth derivative (HLSL max(|ddx|,|ddy|), as Falcor stores it).
   SVGF_HD float depth_fwidth(int i) const { return max_f(abs_f(depth_dx[i]), abs_f(depth_dy[i])); }
   SVGF_HD bool is_surface(int i) const { return depth[i] > 0.f; }
+  SVGF_HD DepthNormal depth_normal(int i) const { return DepthNormal{depth[i], normal.load(i)}; }
+};
+
+// The guides the filters read, with depth and normal packed as one Packed4 per pixel (fast
+// mode's storage; the same members as GuideView where the filters use them).
+struct PackedGuides {
+  int width = 0;
+  int height = 0;
+  const Packed4* depth_normal_data = nullptr;  // depth, normal x, y, z
+  const float* depth_dx = nullptr;
+  const float* depth_dy = nullptr;
+
+  SVGF_HD int index(int x, int y) const { return y * width + x; }
+  SVGF_HD bool inside(int x, int y) const { return x >= 0 && y >= 0 && x < width && y < height; }
+  SVGF_HD float depth_fwidth(int i) const { return max_f(abs_f(depth_dx[i]), abs_f(depth_dy[i])); }
+  SVGF_HD DepthNormal depth_normal(int i) const {
+    const Packed4 p = load_packed(depth_normal_data, i);
+    return DepthNormal{p.x, make_vec3(p.y, p.z, p.w)};
+  }
+  SVGF_HD bool is_surface(int i) const { return depth_normal(i).depth > 0.f; }
 };
 
 }  // namespace svgf

@@ -1,16 +1,25 @@
 #pragma once
-// Engine for core/svgf_pipeline.h on the CPU: runs each stage's kernel inside the denoiser's
-// task arena (its thread count) and times it with a steady clock.
+// The CPU engine: runs a method's pixel kernels inside the denoiser's task arena (its thread
+// count) and times each stage with a steady clock. Method-neutral: a kernel runs through
+// cpu::PixelDriver<Kernel>, which is for_each_pixel unless a method's CPU driver specializes it
+// (kernels_cpu/svgf_rows.h: the vectorized rows of SVGF's two wide stages, same bits).
 #include <chrono>
 #include <cstdint>
 
 #include <tbb/task_arena.h>
 
 #include "core/stage_times.h"
-#include "kernels_cpu/filter_rows.h"
 #include "kernels_cpu/parallel_for.h"
 
 namespace svgf::cpu {
+
+// How the CPU runs a kernel: one call per pixel, TBB over rows.
+template <class Kernel, class = void>
+struct PixelDriver {
+  static void run(const Kernel& kernel, int width, int height) {
+    for_each_pixel(width, height, kernel);
+  }
+};
 
 class CpuEngine {
  public:
@@ -20,39 +29,28 @@ class CpuEngine {
   int threads() const { return arena_.max_concurrency(); }
 
   template <class Kernel>
-  void run(Stage stage, const Kernel& kernel, int width, int height) {
-    timed(stage, [&] { for_each_pixel(width, height, kernel); });
-  }
-
-  // The wide-neighbourhood stages take their vectorized row drivers (same bits).
-  void run(Stage stage, const AtrousKernel& kernel, int width, int height) {
-    timed(stage, [&] { run_atrous_rows(kernel, width, height); });
-  }
-  void run(Stage stage, const VarianceKernel& kernel, int width, int height) {
-    timed(stage, [&] { run_variance_rows(kernel, width, height); });
+  void run(const char* stage, const Kernel& kernel, int width, int height) {
+    const auto t0 = std::chrono::steady_clock::now();
+    arena_.execute([&] { PixelDriver<Kernel>::run(kernel, width, height); });
+    times_.add(stage, elapsed_ms(t0));
   }
 
   template <class Kernel>
-  void run_counting(Stage stage, const Kernel& kernel, int width, int height) {
+  void run_counting(const char* stage, const Kernel& kernel, int width, int height) {
     const auto t0 = std::chrono::steady_clock::now();
     int64_t n = 0;
     arena_.execute([&] { n = count_pixels(width, height, kernel); });
     counted_ += n;
-    times_[stage] += elapsed_ms(t0);
+    times_.add(stage, elapsed_ms(t0));
   }
 
   // Per-frame bookkeeping: cleared by begin_frame().
-  void begin_frame() { times_ = StageTimes(); counted_ = 0; }
+  void begin_frame() { times_.clear(); counted_ = 0; }
+  void end_frame() {}
   const StageTimes& times() const { return times_; }
   int64_t counted() const { return counted_; }
 
  private:
-  template <class Work>
-  void timed(Stage stage, const Work& work) {
-    const auto t0 = std::chrono::steady_clock::now();
-    arena_.execute(work);
-    times_[stage] += elapsed_ms(t0);
-  }
   static double elapsed_ms(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
         .count();

@@ -8,18 +8,18 @@ CudaEngine::CudaEngine(LaunchShape shape) : shape_(shape), counter_(1) {
 
 void CudaEngine::begin_frame() {
   marks_.clear();
-  times_ = StageTimes();
+  times_.clear();
   counted_ = 0;
   SVGF_CUDA_CHECK(
       cudaMemsetAsync(counter_.get(), 0, sizeof(unsigned long long), stream_.get()),
       "cudaMemsetAsync of the replaced-sample counter");
 }
 
-void CudaEngine::mark(Stage stage, const char* what) {
+void CudaEngine::mark(const char* stage) {
   if (events_.size() <= marks_.size()) events_.emplace_back();
   SVGF_CUDA_CHECK(cudaEventRecord(events_[marks_.size()].get(), stream_.get()),
-                  std::string("cudaEventRecord before ") + what);
-  marks_.push_back(Mark{stage, what});
+                  std::string("cudaEventRecord before ") + stage);
+  marks_.push_back(stage);
 }
 
 void CudaEngine::end_frame() {
@@ -33,14 +33,14 @@ void CudaEngine::end_frame() {
   if (e != cudaSuccess) {
     // Kernels run asynchronously: a fault is seen here, after the fact. Name them all.
     std::string names;
-    for (const Mark& m : marks_) names += (names.empty() ? "" : ", ") + std::string(m.what);
+    for (const char* m : marks_) names += (names.empty() ? "" : ", ") + std::string(m);
     check(e, "executing the frame's kernels (" + names + ")");
   }
   for (size_t i = 0; i < marks_.size(); ++i) {
     float ms = 0.f;
     SVGF_CUDA_CHECK(cudaEventElapsedTime(&ms, events_[i].get(), events_[i + 1].get()),
                     "cudaEventElapsedTime");
-    times_[marks_[i].stage] += static_cast<double>(ms);
+    times_.add(marks_[i], static_cast<double>(ms));
   }
   counted_ = static_cast<int64_t>(*counter_host_.get());
 }

@@ -1,8 +1,10 @@
 #pragma once
-// Engine for core/svgf_pipeline.h on the GPU: every stage is a launch on the denoiser's stream,
-// bracketed by CUDA events for the per-stage times. Nothing waits until end_frame(), which
-// synchronizes once, reads the times and the replaced-sample count, and raises any fault of the
-// frame's kernels as a CudaError naming them. Host-compilable.
+// The CUDA engine: every stage is a launch on the denoiser's stream, bracketed by CUDA events
+// for the per-stage times. Nothing waits until end_frame(), which synchronizes once, reads the
+// times and the replaced-sample count, and raises any fault of the frame's kernels as a
+// CudaError naming their stages. Host-compilable; run() and run_counting() are templates
+// defined in kernels_cuda/cuda_launch.cuh, so the kernels a method's pipeline runs are
+// instantiated by the .cu file that instantiates the method (no list of kernels anywhere).
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -10,7 +12,7 @@
 #include "core/stage_times.h"
 #include "kernels_cuda/cuda_handles.h"
 #include "kernels_cuda/device_array.h"
-#include "kernels_cuda/exact_launch.h"
+#include "kernels_cuda/launch_shape.h"
 
 namespace svgf::cuda {
 
@@ -19,20 +21,14 @@ class CudaEngine {
   explicit CudaEngine(LaunchShape shape);
 
   template <class Kernel>
-  void run(Stage stage, const Kernel& kernel, int width, int height) {
-    mark(stage, kernel_name(kernel));
-    launch(kernel, width, height, shape_, stream_.get());
-  }
+  void run(const char* stage, const Kernel& kernel, int width, int height);
   template <class Kernel>
-  void run_counting(Stage stage, const Kernel& kernel, int width, int height) {
-    mark(stage, kernel_name(kernel));
-    launch(kernel, width, height, shape_, stream_.get(), counter_.get());
-  }
+  void run_counting(const char* stage, const Kernel& kernel, int width, int height);
 
   // Per-frame bookkeeping. begin_frame() zeroes the counter; mark() records an event: the work
-  // enqueued from here to the next mark is `stage`, named `what` in errors.
+  // enqueued from here to the next mark is `stage`.
   void begin_frame();
-  void mark(Stage stage, const char* what);
+  void mark(const char* stage);
   void end_frame();
 
   cudaStream_t stream() const { return stream_.get(); }
@@ -42,16 +38,12 @@ class CudaEngine {
   int64_t counted() const { return counted_; }
 
  private:
-  struct Mark {
-    Stage stage;
-    const char* what;
-  };
   LaunchShape shape_;
   Stream stream_;
   DeviceArray<unsigned long long> counter_;
   PinnedBuffer<unsigned long long> counter_host_;
   std::vector<Event> events_;  // grows to the most marks a frame has needed
-  std::vector<Mark> marks_;
+  std::vector<const char*> marks_;
   StageTimes times_;
   int64_t counted_ = 0;
 };

@@ -5,7 +5,7 @@
 
 #include <cuda_runtime.h>
 
-#include "kernels_cuda/svgf_cuda.h"
+#include "kernels_cuda/cuda_denoisers.h"
 
 namespace svgf::cuda {
 namespace {

@@ -6,7 +6,7 @@
 #include <cuda_runtime_api.h>
 
 #include "kernels_cuda/cuda_check.h"
-#include "kernels_cuda/stage_runner.h"
+#include "kernels_cuda/launch_shape.h"
 
 namespace svgf::cuda {
 

@@ -1,12 +1,14 @@
-// The factory behind the one Denoiser interface: picks the method's implementation on the
+// The factory behind the one Denoiser interface: picks the method's instantiation on the
 // requested backend. The CUDA backend is linked only when the build has it (SVGF_HAVE_CUDA).
+#include "pipeline/make_denoiser.h"
+
 #include <stdexcept>
 #include <string>
 
-#include "core/denoiser.h"
+#include "kernels_cpu/gaussian_cpu.h"
 #include "kernels_cpu/svgf_cpu.h"
 #if defined(SVGF_HAVE_CUDA)
-#include "kernels_cuda/svgf_cuda.h"
+#include "kernels_cuda/cuda_denoisers.h"
 #endif
 
 namespace svgf {
@@ -14,6 +16,7 @@ namespace svgf {
 const char* to_string(Method m) {
   switch (m) {
     case Method::Svgf: return "svgf";
+    case Method::Gaussian: return "gaussian";
   }
   return "?";
 }
@@ -29,7 +32,8 @@ const char* to_string(Mode m) { return m == Mode::Exact ? "exact" : "fast"; }
 
 Method parse_method(const std::string& s) {
   if (s == "svgf") return Method::Svgf;
-  throw std::invalid_argument("unknown method '" + s + "' (known: svgf)");
+  if (s == "gaussian") return Method::Gaussian;
+  throw std::invalid_argument("unknown method '" + s + "' (known: svgf, gaussian)");
 }
 Backend parse_backend(const std::string& s) {
   if (s == "cpu") return Backend::Cpu;
@@ -59,18 +63,22 @@ std::unique_ptr<Denoiser> make_denoiser(const DenoiserConfig& config) {
     // Fast mode is a GPU mode; on the CPU fallback the exact pipeline is what exists.
     if (c.backend == Backend::Cpu) c.mode = Mode::Exact;
   }
+  const EngineConfig& e = c;
   if (c.backend == Backend::Cuda) {
+    std::string why;
+    if (!cuda_available(&why)) throw std::runtime_error("backend cuda: " + why);
 #if defined(SVGF_HAVE_CUDA)
-    std::string why;
-    if (!cuda::device_available(&why)) throw std::runtime_error("backend cuda: " + why);
-    return cuda::make_svgf_denoiser(c);
-#else
-    std::string why;
-    cuda_available(&why);
-    throw std::runtime_error("backend cuda: " + why);
+    switch (c.method) {
+      case Method::Svgf: return cuda::make_svgf_denoiser(c.svgf, e);
+      case Method::Gaussian: return cuda::make_gaussian_denoiser(c.gaussian, e);
+    }
 #endif
   }
-  return cpu::make_svgf_denoiser(c);
+  switch (c.method) {
+    case Method::Svgf: return cpu::make_svgf_denoiser(c.svgf, e);
+    case Method::Gaussian: return cpu::make_gaussian_denoiser(c.gaussian, e);
+  }
+  throw std::invalid_argument("make_denoiser: unknown method");
 }
 
 }  // namespace svgf

@@ -1,4 +1,4 @@
 svgf_add_tests(svgf_core_tests
-  SOURCES det_math_test.cpp demodulate_test.cpp reproject_test.cpp variance_test.cpp
-          atrous_test.cpp cpu_rows_test.cpp
+  SOURCES det_math_test.cpp svgf_demodulate_test.cpp svgf_reproject_test.cpp
+          svgf_variance_test.cpp svgf_atrous_test.cpp svgf_cpu_rows_test.cpp
   LIBS svgf_cpu)

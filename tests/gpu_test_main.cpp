@@ -14,7 +14,7 @@
 #include <cuda_runtime_api.h>
 
 #include "gpu_test_support.h"
-#include "kernels_cuda/svgf_cuda.h"
+#include "kernels_cuda/cuda_denoisers.h"
 
 namespace fs = std::filesystem;
 

@@ -13,12 +13,12 @@
 
 #include <catch2/catch.hpp>
 
-#include "core/denoiser.h"
+#include "pipeline/make_denoiser.h"
 #include "gpu_test_support.h"
 #include "io/sequence.h"
 #include "kernels_cuda/cuda_check.h"
 #include "kernels_cuda/device_array.h"
-#include "kernels_cuda/svgf_cuda.h"
+#include "kernels_cuda/cuda_denoisers.h"
 #include "metrics/image_metrics.h"
 #include "synthetic_sequence.h"
 
@@ -113,26 +113,20 @@ TEST_CASE("pipeline: CPU vs CUDA exact bitwise over whole sequences; fast within
       INFO(where);
       REQUIRE(cpu->last_report().replaced_samples == exact->last_report().replaced_samples);
       REQUIRE(fast->last_report().replaced_samples == exact->last_report().replaced_samples);
-      const std::pair<DebugBuffer, const char*> buffers[] = {
-          {DebugBuffer::Illumination, "illumination"},
-          {DebugBuffer::Accumulated, "accumulated"},
-          {DebugBuffer::Moments, "moments"},
-          {DebugBuffer::HistoryLength, "history length"},
-          {DebugBuffer::ColorHistory, "color history"}};
-      for (const auto& [which, name] : buffers) {
-        const Image a = cpu->read_buffer(which);
-        test::require_identical(a, exact->read_buffer(which), where + ": " + name);
+      for (const std::string& name : cpu->debug_buffers()) {
+        const Image a = cpu->read_buffer(name);
+        test::require_identical(a, exact->read_buffer(name), where + ": " + name);
         count_values(a);
       }
       tally().frames += 1;
 
       // Fast mode: the history decisions are exact mode's (same reprojection code and flags),
       // the filtered values within tolerance.
-      test::require_identical(fast->read_buffer(DebugBuffer::HistoryLength),
-                              exact->read_buffer(DebugBuffer::HistoryLength),
+      test::require_identical(fast->read_buffer(svgf_buffer::kHistoryLength),
+                              exact->read_buffer(svgf_buffer::kHistoryLength),
                               where + ": fast history length");
-      test::require_identical(fast->read_buffer(DebugBuffer::Illumination),
-                              exact->read_buffer(DebugBuffer::Illumination),
+      test::require_identical(fast->read_buffer(svgf_buffer::kIllumination),
+                              exact->read_buffer(svgf_buffer::kIllumination),
                               where + ": fast illumination");
       for (float v : out_fast.data()) REQUIRE(std::isfinite(v));
       const double rel = metrics::relmse(out_fast, out_exact);
@@ -180,8 +174,8 @@ TEST_CASE("determinism: two runs and three block shapes give the same bits, exac
                                     std::to_string(k) + ", block " + std::to_string(shapes[d][0]) +
                                     "x" + std::to_string(shapes[d][1]) + " vs the first 16x8 run";
           test::require_identical(outs[0], outs[d], where);
-          test::require_identical(ds[0]->read_buffer(DebugBuffer::ColorHistory),
-                                  ds[d]->read_buffer(DebugBuffer::ColorHistory),
+          test::require_identical(ds[0]->read_buffer(svgf_buffer::kColorHistory),
+                                  ds[d]->read_buffer(svgf_buffer::kColorHistory),
                                   where + ": color history");
         }
         tally().determinism_frames += 1;
@@ -199,7 +193,7 @@ TEST_CASE("interface: Backend::Auto picks CUDA and says so; descriptions", "[int
   REQUIRE_THAT(e->description(), Contains("svgf cuda exact"));
   REQUIRE_THAT(e->description(), Contains("13x7"));
   // Before the first frame there is nothing to read back (as on the CPU).
-  REQUIRE(e->read_buffer(DebugBuffer::HistoryLength).empty());
+  REQUIRE(e->read_buffer(svgf_buffer::kHistoryLength).empty());
 }
 
 TEST_CASE("errors: size change and bad block shapes are clear errors", "[errors]") {
@@ -292,7 +286,7 @@ namespace {
 
 struct Timing {
   double median_filter_ms = 0;
-  StageTimes median_stages;
+  std::vector<std::pair<std::string, double>> median_stages;
 };
 
 Timing time_denoiser(Denoiser& d, const std::vector<Frame>& frames, int warmup, int reps) {
@@ -308,19 +302,18 @@ Timing time_denoiser(Denoiser& d, const std::vector<Frame>& frames, int warmup, 
   for (const auto& s : all) v.push_back(s.filter_ms());
   std::sort(v.begin(), v.end());
   t.median_filter_ms = v[v.size() / 2];
-  for (int s = 0; s < kStageCount; ++s) {
+  for (const std::string& stage : d.stages()) {
     std::vector<double> u;
-    for (const auto& x : all) u.push_back(x.ms[s]);
+    for (const auto& x : all) u.push_back(x[stage]);
     std::sort(u.begin(), u.end());
-    t.median_stages.ms[s] = u[u.size() / 2];
+    t.median_stages.emplace_back(stage, u[u.size() / 2]);
   }
   return t;
 }
 
 void print_timing(const char* what, const Timing& t) {
   std::printf("%-28s filter %8.3f ms |", what, t.median_filter_ms);
-  for (int s = 0; s < kStageCount; ++s)
-    std::printf(" %s %.3f", stage_name(static_cast<Stage>(s)), t.median_stages.ms[s]);
+  for (const auto& [stage, ms] : t.median_stages) std::printf(" %s %.3f", stage.c_str(), ms);
   std::printf("\n");
 }
 

@@ -3,7 +3,8 @@
 // the "arena" that lets one kernel struct run on both sides. An arena is one host allocation
 // holding every plane a stage touches, mirrored by one device allocation of the same layout;
 // a kernel built with host pointers is translated to device pointers by offset, so the CPU and
-// the GPU run the same struct on the same bytes, and the whole arena is compared afterwards
+// the GPU run the same struct on the same bytes (compiled by nvcc: cuda::run is the generic
+// launcher), and the whole arena is compared afterwards
 // (outputs, and inputs that must stay untouched).
 #include <cstdint>
 #include <cstring>
@@ -16,11 +17,11 @@
 #include <catch2/catch.hpp>
 
 #include "core/image.h"
-#include "core/svgf_pipeline.h"
 #include "core/tonemap.h"
 #include "kernels_cpu/parallel_for.h"
+#include "kernels_cuda/cuda_launch.cuh"
 #include "kernels_cuda/device_array.h"
-#include "kernels_cuda/stage_runner.h"
+#include "methods/svgf/pipeline.h"
 #include "test_support.h"
 
 namespace svgf::gpu_test {
@@ -119,85 +120,32 @@ class Arena {
   size_t used_ = 0;
 };
 
-// Host pointer into the arena -> the same offset in the device copy.
+// The host arena and its device copy.
 struct Mapper {
   const float* host;
   float* device;
-  template <class T>
-  T* operator()(T* p) const {
-    if (p == nullptr) return nullptr;
-    const auto offset = reinterpret_cast<const char*>(p) - reinterpret_cast<const char*>(host);
-    return reinterpret_cast<T*>(reinterpret_cast<char*>(device) + offset);
-  }
-  template <class T>
-  Rgb<T> operator()(Rgb<T> v) const { return {(*this)(v.r), (*this)(v.g), (*this)(v.b)}; }
-  template <class T>
-  IllumVar<T> operator()(IllumVar<T> v) const { return {(*this)(v.color), (*this)(v.variance)}; }
-  GuideView operator()(GuideView g) const {
-    g.depth = (*this)(g.depth);
-    g.depth_dx = (*this)(g.depth_dx);
-    g.depth_dy = (*this)(g.depth_dy);
-    g.normal = (*this)(g.normal);
-    g.mesh_id = (*this)(g.mesh_id);
-    g.motion_x = (*this)(g.motion_x);
-    g.motion_y = (*this)(g.motion_y);
-    return g;
-  }
 };
 
-// Every pointer of each kernel struct, translated.
-inline DemodulateKernel to_device(DemodulateKernel k, const Mapper& m) {
-  k.color = m(k.color);
-  k.albedo = m(k.albedo);
-  k.emission = m(k.emission);
-  k.illumination = m(k.illumination);
-  return k;
-}
-inline ReprojectKernel to_device(ReprojectKernel k, const Mapper& m) {
-  k.guides = m(k.guides);
-  k.prev_guides = m(k.prev_guides);
-  k.illumination = m(k.illumination);
-  k.prev_color = m(k.prev_color);
-  k.prev_moment1 = m(k.prev_moment1);
-  k.prev_moment2 = m(k.prev_moment2);
-  k.prev_history = m(k.prev_history);
-  k.accumulated = m(k.accumulated);
-  k.moment1 = m(k.moment1);
-  k.moment2 = m(k.moment2);
-  k.history = m(k.history);
-  return k;
-}
-inline VarianceKernel to_device(VarianceKernel k, const Mapper& m) {
-  k.guides = m(k.guides);
-  k.accumulated = m(k.accumulated);
-  k.moment1 = m(k.moment1);
-  k.moment2 = m(k.moment2);
-  k.history = m(k.history);
-  k.out = m(k.out);
-  return k;
-}
-inline AtrousKernel to_device(AtrousKernel k, const Mapper& m) {
-  k.guides = m(k.guides);
-  k.in = m(k.in);
-  k.out = m(k.out);
-  return k;
-}
-inline RemodulateKernel to_device(RemodulateKernel k, const Mapper& m) {
-  k.illumination = m(k.illumination);
-  k.albedo = m(k.albedo);
-  k.emission = m(k.emission);
-  k.output = m(k.output);
-  return k;
-}
-inline TonemapKernel to_device(TonemapKernel k, const Mapper& m) {
-  k.color = m(k.color);
-  k.rgb8 = m(k.rgb8);
-  return k;
-}
-inline CopyRgbKernel to_device(CopyRgbKernel k, const Mapper& m) {
-  k.src = m(k.src);
-  k.dst = m(k.dst);
-  return k;
+// A kernel built with arena host pointers, with every pointer into the arena moved to the same
+// offset in the device copy. Kernels are trivially copyable structs of views and parameters, so
+// this works on their bytes for any kernel type (no per-kernel list to keep): each 8-byte
+// aligned word holding an address inside the host arena is a pointer into it. A float or int
+// field would have to spell a heap address bit for bit to be mistaken for one.
+template <class K>
+K to_device(const K& kernel, const Mapper& m, size_t arena_bytes) {
+  static_assert(std::is_trivially_copyable_v<K>, "kernels are plain structs");
+  K out = kernel;
+  unsigned char* bytes = reinterpret_cast<unsigned char*>(&out);
+  const auto lo = reinterpret_cast<uintptr_t>(m.host);
+  for (size_t at = 0; at + sizeof(uintptr_t) <= sizeof(K); at += alignof(void*)) {
+    uintptr_t word;
+    std::memcpy(&word, bytes + at, sizeof word);
+    if (word >= lo && word < lo + arena_bytes) {
+      word = reinterpret_cast<uintptr_t>(m.device) + (word - lo);
+      std::memcpy(bytes + at, &word, sizeof word);
+    }
+  }
+  return out;
 }
 
 // Bitwise comparison of two arena images, region by region, with the first differing pixels.
@@ -240,15 +188,15 @@ void check_stage(Arena& arena, const K& kernel, const std::string& what,
                  cuda::LaunchShape shape = {}) {
   const int w = arena.width(), h = arena.height();
   cuda::DeviceArray<float> device(arena.host().data(), arena.host().size());
-  const K on_device = to_device(kernel, Mapper{arena.host().data(), device.get()});
+  const K on_device = to_device(kernel, Mapper{arena.host().data(), device.get()},
+                                arena.host().size() * sizeof(float));
   int64_t cpu_count = 0, gpu_count = 0;
-  if constexpr (std::is_same_v<K, DemodulateKernel>) {
+  if constexpr (std::is_same_v<decltype(kernel(0, 0)), bool>) {
     cpu_count = cpu::count_pixels(w, h, kernel);
-    gpu_count = cuda::run(on_device, w, h, shape);
   } else {
     cpu::for_each_pixel(w, h, kernel);
-    cuda::run(on_device, w, h, shape);
   }
+  gpu_count = cuda::run(on_device, w, h, shape, what.c_str());
   const std::vector<float> gpu = device.to_host();
   require_same_arena(arena, arena.host(), gpu, what);
   INFO(what);

@@ -2,6 +2,10 @@
 # tests. A plain executable with its own main (not catch_discover_tests: ctest must see one test
 # that reports "skipped" (exit 77) on a machine without a CUDA device, never "passed").
 if(TARGET svgf_cuda)
+  # The tests run single kernels through the generic launcher: compiled by nvcc with the
+  # backend's exact flags.
+  set_source_files_properties(gpu_test_main.cpp gpu_test.cpp gpu_test_pipeline.cpp PROPERTIES LANGUAGE CUDA
+    COMPILE_OPTIONS "${SVGF_CUDA_EXACT_FLAGS}")
   add_executable(svgf_gpu_tests gpu_test_main.cpp gpu_test.cpp gpu_test_pipeline.cpp)
   target_link_libraries(svgf_gpu_tests PRIVATE
     Catch2::Catch2 svgf_core svgf_cpu svgf_pipeline svgf_cuda svgf_io svgf_metrics)

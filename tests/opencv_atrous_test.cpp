@@ -9,7 +9,7 @@
 #include <catch2/catch.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "core/atrous.h"
+#include "methods/svgf/atrous.h"
 #include "opencv_support.h"
 
 using namespace svgf;
@@ -25,7 +25,7 @@ constexpr double kAtrousTol = 27 * kU;
 constexpr double kPrefilterTol = 10 * kU;
 
 // The B3 spline (1/16, 1/4, 3/8, 1/4, 1/16) written out here rather than taken from
-// core/params.h: the check must not share the weights it checks. Taps `step` apart; squared
+// methods/svgf/params.h: the check must not share the weights it checks. Taps `step` apart; squared
 // for the variance, which the filter carries with squared weights.
 cv::Mat b3_dilated(int step, bool squared) {
   const double b3[5] = {1.0 / 16, 1.0 / 4, 3.0 / 8, 1.0 / 4, 1.0 / 16};

@@ -13,8 +13,8 @@
 #include <catch2/catch.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "core/reproject.h"
-#include "core/variance.h"
+#include "methods/svgf/reproject.h"
+#include "methods/svgf/variance.h"
 #include "opencv_support.h"
 
 using namespace svgf;

@@ -17,7 +17,7 @@
 #include <catch2/catch.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "core/denoiser.h"
+#include "pipeline/make_denoiser.h"
 #include "io/sequence.h"
 #include "opencv_support.h"
 #include "synthetic_sequence.h"

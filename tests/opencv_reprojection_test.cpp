@@ -14,7 +14,7 @@
 #include <catch2/catch.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "core/reproject.h"
+#include "methods/svgf/reproject.h"
 #include "opencv_support.h"
 #include "synthetic_sequence.h"
 

@@ -17,20 +17,22 @@
 #include <catch2/catch.hpp>
 #include <opencv2/core.hpp>
 
-#include "core/atrous.h"
-#include "core/denoiser.h"
+#include "methods/svgf/atrous.h"
+#include "pipeline/make_denoiser.h"
 #include "core/frame.h"
 #include "core/image.h"
-#include "core/variance.h"
+#include "methods/svgf/variance.h"
 #include "core/views.h"
 #include "io/sequence.h"
-#include "kernels_cpu/filter_rows.h"
+#include "kernels_cpu/svgf_rows.h"
 #include "kernels_cpu/parallel_for.h"
 #include "opencv_probe.h"
 #if defined(SVGF_HAVE_CUDA)
+#include "kernels_cuda/cuda_denoisers.h"
 #include "kernels_cuda/device_array.h"
-#include "kernels_cuda/stage_runner.h"
-#include "kernels_cuda/svgf_cuda.h"
+#endif
+#if defined(__CUDACC__)
+#include "kernels_cuda/cuda_launch.cuh"
 #endif
 
 namespace svgf::cvtest {
@@ -275,13 +277,6 @@ inline std::string driver_name(Backend b, Driver d) {
   return std::string(to_string(b)) + (d == Driver::Rows ? " rows" : "");
 }
 
-#if defined(SVGF_HAVE_CUDA)
-template <class Kernel>
-void launch_cuda(const Kernel& k, int w, int h) {
-  cuda::run(k, w, h);
-}
-inline void launch_cuda(const PrefilterProbe& k, int w, int h) { run_probe_cuda(k, w, h); }
-#endif
 
 // Where one stage's buffers live: host memory for the CPU, device copies for CUDA. Map every
 // host image the kernel reads or writes (mapping uploads its current contents), build the kernel
@@ -331,15 +326,15 @@ class StageRunner {
       cpu::for_each_pixel(w, h, kernel);
       return;
     }
-#if defined(SVGF_HAVE_CUDA)
-    launch_cuda(kernel, w, h);
+#if defined(__CUDACC__)
+    cuda::run(kernel, w, h);  // the generic launcher: this file is compiled by nvcc
 #else
     FAIL("CUDA stage run in a build without the CUDA backend");
 #endif
   }
 
   // The CPU engine runs the two wide stages through its row-vectorized drivers
-  // (kernels_cpu/filter_rows.h), not the per-pixel loop: checks of those stages run both.
+  // (kernels_cpu/svgf_rows.h), not the per-pixel loop: checks of those stages run both.
   // On CUDA this is run().
   void run_rows(const AtrousKernel& kernel, int w, int h) {
     if (backend_ == Backend::Cpu) cpu::run_atrous_rows(kernel, w, h);

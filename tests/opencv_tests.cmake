@@ -6,10 +6,14 @@ set(svgf_opencv_sources
   opencv_reprojection_test.cpp
   opencv_moments_test.cpp
   opencv_metrics_test.cpp
-  opencv_pipeline_test.cpp)
-# The CUDA variants need the backend's stage runner plus one probe kernel of our own.
+  opencv_pipeline_test.cpp
+  opencv_gaussian_test.cpp)
+# With the CUDA backend, the checks are compiled by nvcc (exact flags, as the backend's kernels):
+# their CUDA variants launch each stage kernel through the generic launcher
+# (kernels_cuda/cuda_launch.cuh), so no list of kernel types is kept anywhere.
 if(TARGET svgf_cuda)
-  list(APPEND svgf_opencv_sources opencv_cuda_probe.cu)
+  set_source_files_properties(${svgf_opencv_sources} PROPERTIES LANGUAGE CUDA
+    COMPILE_OPTIONS "${SVGF_CUDA_EXACT_FLAGS}")
 endif()
 
 svgf_add_tests(svgf_opencv_tests
@@ -20,9 +24,6 @@ if(TARGET svgf_cuda)
   # svgf_cuda brings the CUDA runtime (static, as the backend links it) and its headers.
   target_link_libraries(svgf_opencv_tests PRIVATE svgf_cuda)
   target_compile_definitions(svgf_opencv_tests PRIVATE SVGF_HAVE_CUDA=1)
-  # The probe rounds like the backend's exact kernels (kernels_cuda/CMakeLists.txt).
-  set_source_files_properties(opencv_cuda_probe.cu PROPERTIES COMPILE_OPTIONS
-    "-fmad=false;-prec-div=true;-prec-sqrt=true;-ftz=false;-Xcompiler=-Wall,-Wextra")
 endif()
 
 # The CUDA variants are hidden from test discovery ([.cuda]) and run here as one entry, so that a

@@ -1,1 +1,1 @@
-svgf_add_tests(svgf_pipeline_tests SOURCES pipeline_test.cpp LIBS svgf_pipeline svgf_metrics)
+svgf_add_tests(svgf_pipeline_tests SOURCES svgf_pipeline_test.cpp gaussian_test.cpp LIBS svgf_pipeline svgf_metrics)

@@ -2,7 +2,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "core/atrous.h"
+#include "methods/svgf/atrous.h"
 #include "kernels_cpu/parallel_for.h"
 #include "test_support.h"
 

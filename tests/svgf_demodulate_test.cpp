@@ -3,8 +3,8 @@
 
 #include <catch2/catch.hpp>
 
-#include "core/demodulate.h"
-#include "core/remodulate.h"
+#include "methods/svgf/demodulate.h"
+#include "methods/svgf/remodulate.h"
 #include "kernels_cpu/parallel_for.h"
 #include "test_support.h"
 

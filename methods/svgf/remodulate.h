@@ -1,7 +1,7 @@
 #pragma once
 // Final stage: remodulate. Multiplies the filtered illumination by the same guarded albedo that
 // demodulate divided by, restoring texture, and adds the emission back.
-#include "core/demodulate.h"
+#include "methods/svgf/demodulate.h"
 
 namespace svgf {
 

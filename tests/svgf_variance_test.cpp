@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 
-#include "core/variance.h"
+#include "methods/svgf/variance.h"
 #include "kernels_cpu/parallel_for.h"
 #include "test_support.h"
 

@@ -8,7 +8,7 @@
 #include <cmath>
 
 #include "core/hd.h"
-#include "core/params.h"
+#include "methods/svgf/params.h"
 #include "core/views.h"
 
 namespace svgf {

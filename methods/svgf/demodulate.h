@@ -5,19 +5,11 @@
 // surrounds them, are not spread onto their neighbours (Falcor's SVGF does the same). Also the
 // gate that keeps bad samples out of the history: see sanitize_radiance.
 #include "core/hd.h"
-#include "core/params.h"
+#include "core/sanitize.h"
+#include "methods/svgf/params.h"
 #include "core/views.h"
 
 namespace svgf {
-
-// The bad-sample rule: a color component that is NaN, +-Inf or negative is replaced by 0
-// (no light), and the pixel is counted. Radiance is never negative, and 0 is the one value that
-// cannot brighten or darken the history beyond what a dark sample would.
-SVGF_HD float sanitize_radiance(float v, bool& replaced) {
-  const bool ok = v >= 0.f && is_finite(v);
-  replaced = replaced || !ok;
-  return ok ? v : 0.f;
-}
 
 // Albedo clamped from below (NaN albedo clamps too, since max_f drops NaN).
 SVGF_HD Vec3 guarded_albedo(Vec3 albedo, float epsilon) { return max_v(albedo, epsilon); }

@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 
-#include "core/reproject.h"
+#include "methods/svgf/reproject.h"
 #include "kernels_cpu/parallel_for.h"
 #include "test_support.h"
 

@@ -1,8 +1,9 @@
 #pragma once
 // The joint edge-stopping weight of SVGF (Schied et al. 2017, Eq. 3-4; Falcor's computeWeight):
-//   w = exp(-|l_p - l_q| / phi_l  -  |z_p - z_q| / phi_z) * max(0, n_p . n_q)^phi_n
-// evaluated with the reciprocals 1/phi_l and 1/phi_z (the same on every backend).
-// shared by the 7x7 spatial variance estimate and the a-trous iterations.
+//   w = exp(-|l_p - l_q| / phi_l  -  |z_p - z_q| / phi_z) * saturate(n_p . n_q)^phi_n
+// evaluated with the reciprocals 1/phi_l and 1/phi_z, shared by the 7x7 spatial variance
+// estimate and the a-trous iterations, on every backend and in every mode (Arith).
+#include "core/arith.h"
 #include "core/det_math.h"
 #include "core/vec.h"
 
@@ -19,6 +20,7 @@ struct EdgeSample {
 // float: cheap, and the same bits whether m is known at run time (this struct, used by the
 // per-pixel kernels) or at compile time (NormalPowerFixed, used by the vectorized CPU rows).
 // Any other phi_n goes through det_pow.
+template <class Arith = ExactArith>
 struct NormalPower {
   float phi = 128.f;
   int squarings = -1;  // m when phi = 2^m, else -1
@@ -31,7 +33,7 @@ struct NormalPower {
     return p;
   }
   SVGF_HD float operator()(float d) const {
-    if (squarings < 0) return det_pow(d, phi);
+    if (squarings < 0) return Arith::pow(d, phi);
     for (int i = 0; i < squarings; ++i) d = d * d;
     return d;
   }
@@ -39,40 +41,57 @@ struct NormalPower {
 
 template <int M>
 struct NormalPowerFixed {
+  SVGF_HD static NormalPowerFixed of(float) { return NormalPowerFixed(); }
   SVGF_HD float operator()(float d) const {
     for (int i = 0; i < M; ++i) d = d * d;
     return d;
   }
 };
 
+// The normal term's base: n_p . n_q clamped to [0, 1] (Falcor's saturate). Unit normals give
+// at most 1, but normals stored as half floats reach |n|^2 = 1.0003, and uncapped, a same-face
+// neighbour would weigh up to 1.04 times the centre. NaN stays NaN (min_f/max_f keep their
+// first argument's NaN), so a NaN normal zeroes the weight below.
+template <class Arith>
+SVGF_HD float normal_cosine(Vec3 a, Vec3 b) {
+  return min_f(1.f, max_f(0.f, Arith::dot(a, b)));
+}
+
 // inv_phi_z and inv_phi_l are the reciprocals of the depth and luminance tolerances for this
 // tap (computed once per pixel and tap, so the tap loop has no division). At the centre tap
 // inv_phi_z is Inf and the depth difference 0: 0 * Inf is NaN, which max_f drops, so the centre
 // has no depth term (Falcor's phiDepth == 0 case) without a branch, keeping the CPU row loops
-// vectorizable. Bad guide data (NaN) drops the term it is in or zeroes the weight; the weight
-// is never NaN.
-template <class Power>
+// vectorizable. inv_phi_z = 0 (phi_depth = 0) drops the depth term everywhere. Bad guide data
+// (NaN) drops the term it is in or zeroes the weight; the weight is never NaN.
+template <class Arith = ExactArith, class Power>
 SVGF_HD float edge_stopping_weight(const EdgeSample& c, const EdgeSample& q, float inv_phi_z,
                                    const Power& normal_power, float inv_phi_l) {
-  const float w_normal = normal_power(max_f(0.f, dot(c.normal, q.normal)));
+  const float w_normal = normal_power(normal_cosine<Arith>(c.normal, q.normal));
   const float e_depth = abs_f(c.depth - q.depth) * inv_phi_z;
   const float e_lum = abs_f(c.luminance - q.luminance) * inv_phi_l;
   // The argument is <= 0 (or -0): both terms are clamped to >= 0 first.
-  const float w = det_exp_nonpositive((0.f - max_f(e_lum, 0.f)) - max_f(e_depth, 0.f)) * w_normal;
+  const float w =
+      Arith::exp_nonpositive((0.f - max_f(e_lum, 0.f)) - max_f(e_depth, 0.f)) * w_normal;
   return w > 0.f ? w : 0.f;
 }
 
 SVGF_HD float edge_stopping_weight(const EdgeSample& c, const EdgeSample& q, float inv_phi_z,
                                    float phi_normal, float inv_phi_l) {
-  return edge_stopping_weight(c, q, inv_phi_z, NormalPower::of(phi_normal), inv_phi_l);
+  return edge_stopping_weight<ExactArith>(c, q, inv_phi_z, NormalPower<>::of(phi_normal),
+                                          inv_phi_l);
 }
 
 // 1 / distance in pixels of the tap (dx, dy) * step (Inf at the centre); sqrt and division
 // are IEEE-exact on both sides.
 SVGF_HD float inv_tap_distance(int dx, int dy, int step) {
-  const float fx = static_cast<float>(dx * step);
-  const float fy = static_cast<float>(dy * step);
-  return 1.f / sqrtf(fx * fx + fy * fy);
+  return ExactArith::tap_depth_scale(1.f, dx, dy, step);
+}
+
+// 1 / phi_z for a pixel: the depth tolerance phi_depth * max(fwidth(z), floor) (paper Eq. 3's
+// sigma_z |grad z|). phi_depth = 0 means no depth term (Falcor's convention): 0, not Inf.
+template <class Arith = ExactArith>
+SVGF_HD float inv_depth_tolerance(float phi_depth, float depth_fwidth, float floor) {
+  return phi_depth == 0.f ? 0.f : Arith::recip(phi_depth * max_f(depth_fwidth, floor));
 }
 
 }  // namespace svgf

@@ -4,9 +4,9 @@
 
 #include <catch2/catch.hpp>
 
-#include "core/atrous.h"
-#include "core/variance.h"
-#include "kernels_cpu/filter_rows.h"
+#include "methods/svgf/atrous.h"
+#include "methods/svgf/variance.h"
+#include "kernels_cpu/svgf_rows.h"
 #include "kernels_cpu/parallel_for.h"
 #include "test_support.h"
 

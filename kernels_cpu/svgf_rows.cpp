@@ -1,4 +1,4 @@
-#include "kernels_cpu/filter_rows.h"
+#include "kernels_cpu/svgf_rows.h"
 
 #include <algorithm>
 #include <vector>
@@ -113,7 +113,7 @@ SVGF_TAP_LOOP void variance_tap(const float* __restrict depth, const float* __re
 // exponents 2^0 .. 2^10, else the run-time one. Same bits either way (NormalPower).
 template <class Body>
 void with_normal_power(float phi_normal, const Body& body) {
-  const NormalPower p = NormalPower::of(phi_normal);
+  const NormalPower<> p = NormalPower<>::of(phi_normal);
   switch (p.squarings) {
     case 0: return body(NormalPowerFixed<0>());
     case 1: return body(NormalPowerFixed<1>());
@@ -167,8 +167,8 @@ void atrous_row(const AtrousKernel& k, const float* __restrict lum, int y, RowSc
   const float center_k = b3_weight(0) * b3_weight(0);
   for (int x = 0; x < w; ++x) {
     const int i = row + x;
-    inv_phi_l[x] = 1.f / (p.phi_color * sqrtf(max_f(0.f, p.variance_epsilon + inv_phi_l[x])));
-    inv_phi_z[x] = 1.f / (p.phi_depth * max_f(g.depth_fwidth(i), p.depth_gradient_floor));
+    inv_phi_l[x] = atrous_inv_phi_luminance(p, inv_phi_l[x]);
+    inv_phi_z[x] = inv_depth_tolerance(p.phi_depth, g.depth_fwidth(i), p.depth_gradient_floor);
     sw[x] = center_k;
     sr[x] = k.in.color.r[i] * center_k;
     sg[x] = k.in.color.g[i] * center_k;
@@ -247,8 +247,8 @@ void variance_span(const VarianceKernel& k, const float* __restrict lum, int y, 
   float* __restrict sm1 = s.s3.data();
   float* __restrict sm2 = s.b.data();
   for (int x = lo; x < hi; ++x) {
-    inv_phi_z[x] = 1.f / (p.spatial_variance_phi_depth *
-                          max_f(g.depth_fwidth(row + x), p.depth_gradient_floor));
+    inv_phi_z[x] = inv_depth_tolerance(p.spatial_variance_phi_depth, g.depth_fwidth(row + x),
+                                       p.depth_gradient_floor);
     sw[x] = sr[x] = sg[x] = sb[x] = sm1[x] = sm2[x] = 0.f;
   }
   const float inv_phi_l = 1.f / p.phi_color;

@@ -5,8 +5,8 @@
 
 #include <catch2/catch.hpp>
 
-#include "core/denoiser.h"
-#include "core/svgf_pipeline.h"
+#include "pipeline/make_denoiser.h"
+#include "methods/svgf/pipeline.h"
 #include "kernels_cpu/ieee_guard.h"
 #include "kernels_cpu/parallel_for.h"
 #include "metrics/image_metrics.h"
@@ -52,7 +52,7 @@ TEST_CASE("pipeline: denoising a moving synthetic sequence beats the noisy input
   REQUIRE(denoised_psnr > noisy_psnr + 8.0);
   // Wall pixels the square uncovered this frame have no history, except the first column, which
   // the 3x3 fallback joins to the wall beside it.
-  const Image history = d->read_buffer(DebugBuffer::HistoryLength);
+  const Image history = d->read_buffer(svgf_buffer::kHistoryLength);
   const int k = 9, y = scene.square_y() + scene.square / 2;
   for (int x = scene.square_x(k) - scene.speed + 1; x < scene.square_x(k); ++x)
     REQUIRE(history.at(x, y, 0) == 1.f);
@@ -73,8 +73,8 @@ TEST_CASE("pipeline: identical bits on 1 and 2 threads and from run to run", "[p
     test::require_identical(a[k], b[k], "1 vs 2 threads, frame " + std::to_string(k));
     test::require_identical(b[k], c[k], "run vs rerun, frame " + std::to_string(k));
   }
-  test::require_identical(one->read_buffer(DebugBuffer::ColorHistory),
-                          two->read_buffer(DebugBuffer::ColorHistory), "color history");
+  test::require_identical(one->read_buffer(svgf_buffer::kColorHistory),
+                          two->read_buffer(svgf_buffer::kColorHistory), "color history");
 }
 
 TEST_CASE("pipeline: subnormals survive in TBB workers even if the caller flushes them",
@@ -132,14 +132,14 @@ TEST_CASE("pipeline: the feedback tap is what the next frame reads", "[pipeline]
   cpu::for_each_pixel(w, h, AtrousKernel{f0.guides(), {var.rgb(), var.plane(3)}, {it0.rgb(), it0.plane(3)}, 1, p});
   Image it0_rgb(w, h, 3);
   for (int c = 0; c < 3; ++c) std::copy(it0.plane(c), it0.plane(c) + w * h, it0_rgb.plane(c));
-  const Image history = d->read_buffer(DebugBuffer::ColorHistory);
+  const Image history = d->read_buffer(svgf_buffer::kColorHistory);
   test::require_identical(history, it0_rgb, "color history vs a-trous iteration 0");
 
   // Frame 1 (the wall is static) blends its sample into exactly that history at alpha 1/2.
   const Frame f1 = scene.frame(1);
   d->denoise(f1, out);
-  const Image acc1 = d->read_buffer(DebugBuffer::Accumulated);
-  const Image illum1 = d->read_buffer(DebugBuffer::Illumination);
+  const Image acc1 = d->read_buffer(svgf_buffer::kAccumulated);
+  const Image illum1 = d->read_buffer(svgf_buffer::kIllumination);
   for (int x = 0; x < 4; ++x) {
     const float hv = history.at(x, 2, 0);
     REQUIRE(acc1.at(x, 2, 0) == hv + (illum1.at(x, 2, 0) - hv) * 0.5f);
@@ -193,8 +193,8 @@ TEST_CASE("pipeline: reset() restarts the history", "[pipeline]") {
   Image out;
   d->denoise(scene.frame(0), out);
   d->denoise(scene.frame(1), out);
-  REQUIRE(d->read_buffer(DebugBuffer::HistoryLength).at(1, 1, 0) == 2.f);
+  REQUIRE(d->read_buffer(svgf_buffer::kHistoryLength).at(1, 1, 0) == 2.f);
   d->reset();
   d->denoise(scene.frame(2), out);
-  REQUIRE(d->read_buffer(DebugBuffer::HistoryLength).at(1, 1, 0) == 1.f);
+  REQUIRE(d->read_buffer(svgf_buffer::kHistoryLength).at(1, 1, 0) == 1.f);
 }

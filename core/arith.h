@@ -1,0 +1,109 @@
+#pragma once
+// Arithmetic policies: the per-pixel functors are written once and take one of these as a
+// template parameter, so exact and fast mode differ in how a formula is evaluated, never in
+// which formula it is (docs/architecture.md, "Fast mode without a second copy").
+//
+//  ExactArith: IEEE + - * / and sqrt, the project's det_exp/det_pow, every sum rounded in the
+//              written order. Compiled without contraction on both sides: the CPU and the GPU
+//              give the same bits.
+//  FastArith:  GPU intrinsics where they pay: __expf, approximate reciprocals and rsqrt, FMA
+//              for the running sums, pow by squaring. Used only in device code; its tolerance
+//              against exact mode is written in docs/cuda.md and checked by the GPU tests.
+#include <cmath>
+
+#include "core/det_math.h"
+#include "core/hd.h"
+#include "core/vec.h"
+
+namespace svgf {
+
+struct ExactArith {
+  static constexpr bool kExact = true;
+  SVGF_HD static float exp_nonpositive(float x) { return det_exp_nonpositive(x); }
+  SVGF_HD static float pow(float x, float y) { return det_pow(x, y); }
+  SVGF_HD static float dot(Vec3 a, Vec3 b) { return svgf::dot(a, b); }
+  // c + a * b, rounded twice (no FMA).
+  SVGF_HD static float mad(float a, float b, float c) { return c + a * b; }
+  SVGF_HD static Vec3 mad(Vec3 a, float b, Vec3 c) { return c + a * b; }
+  SVGF_HD static Vec2 mad(Vec2 a, float b, Vec2 c) { return c + a * b; }
+  SVGF_HD static float recip(float x) { return 1.f / x; }
+  // 1 / (scale * sqrt(x)).
+  SVGF_HD static float inv_scaled_sqrt(float scale, float x) { return 1.f / (scale * sqrtf(x)); }
+  // Division by one value, several times: IEEE division each time.
+  struct Divider {
+    float d;
+    SVGF_HD float operator()(float x) const { return x / d; }
+    SVGF_HD Vec3 operator()(Vec3 v) const { return v / d; }
+    SVGF_HD Vec2 operator()(Vec2 v) const { return v / d; }
+  };
+  SVGF_HD static Divider divide_by(float d) { return Divider{d}; }
+  // inv_phi_z scaled by 1 / distance in pixels of the tap (dx, dy) * step; at the centre the
+  // distance is 0 and the scale Inf (see edge_stopping_weight for why that drops the term).
+  SVGF_HD static float tap_depth_scale(float inv_phi_z, int dx, int dy, int step) {
+    const float fx = static_cast<float>(dx * step);
+    const float fy = static_cast<float>(dy * step);
+    return inv_phi_z * (1.f / sqrtf(fx * fx + fy * fy));
+  }
+};
+
+// 1 / sqrt(dx^2 + dy^2) for the taps of the 5x5 and 7x7 footprints as constants (the unrolled
+// tap loops fold them); rsqrtf for anything wider. Inf at the centre, as in exact mode.
+SVGF_HD constexpr float inv_distance_small(int dx, int dy) {
+  const int d2 = dx * dx + dy * dy;
+  return d2 == 1    ? 1.f
+         : d2 == 2  ? 0.70710678f
+         : d2 == 4  ? 0.5f
+         : d2 == 5  ? 0.44721360f
+         : d2 == 8  ? 0.35355339f
+         : d2 == 9  ? 0.33333333f
+         : d2 == 10 ? 0.31622777f
+         : d2 == 13 ? 0.27735010f
+         : d2 == 18 ? 0.23570226f
+                    : -1.f;
+}
+
+#if defined(__CUDACC__)
+struct FastArith {
+  static constexpr bool kExact = false;
+  __device__ __forceinline__ static float exp_nonpositive(float x) { return __expf(x); }
+  __device__ __forceinline__ static float pow(float x, float y) {
+    return x > 0.f ? __powf(x, y) : (y > 0.f ? 0.f : 1.f);
+  }
+  __device__ __forceinline__ static float dot(Vec3 a, Vec3 b) {
+    return __fmaf_rn(a.z, b.z, __fmaf_rn(a.y, b.y, a.x * b.x));
+  }
+  __device__ __forceinline__ static float mad(float a, float b, float c) {
+    return __fmaf_rn(a, b, c);
+  }
+  __device__ __forceinline__ static Vec3 mad(Vec3 a, float b, Vec3 c) {
+    return make_vec3(__fmaf_rn(a.x, b, c.x), __fmaf_rn(a.y, b, c.y), __fmaf_rn(a.z, b, c.z));
+  }
+  __device__ __forceinline__ static Vec2 mad(Vec2 a, float b, Vec2 c) {
+    return make_vec2(__fmaf_rn(a.x, b, c.x), __fmaf_rn(a.y, b, c.y));
+  }
+  __device__ __forceinline__ static float recip(float x) { return __fdividef(1.f, x); }
+  __device__ __forceinline__ static float inv_scaled_sqrt(float scale, float x) {
+    return rsqrtf(x) * __fdividef(1.f, scale);
+  }
+  // One approximate reciprocal, then products.
+  struct Divider {
+    float r;
+    __device__ __forceinline__ float operator()(float x) const { return x * r; }
+    __device__ __forceinline__ Vec3 operator()(Vec3 v) const { return v * r; }
+    __device__ __forceinline__ Vec2 operator()(Vec2 v) const { return v * r; }
+  };
+  __device__ __forceinline__ static Divider divide_by(float d) {
+    return Divider{__fdividef(1.f, d)};
+  }
+  __device__ __forceinline__ static float tap_depth_scale(float inv_phi_z, int dx, int dy,
+                                                          int step) {
+    const float c = inv_distance_small(dx, dy);
+    const float inv_dist =
+        c >= 0.f ? c : rsqrtf(static_cast<float>(dx * dx + dy * dy));  // centre: Inf
+    // inv_phi_z / step is the same for every tap of a pixel: hoisted out of the tap loop.
+    return (inv_phi_z * __fdividef(1.f, static_cast<float>(step))) * inv_dist;
+  }
+};
+#endif
+
+}  // namespace svgf

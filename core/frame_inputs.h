@@ -1,0 +1,16 @@
+#pragma once
+// A frame's inputs as a backend holds them for the filters: views into host memory (the CPU
+// reads the Frame in place) or device memory (the CUDA backend's upload). Every method reads
+// its inputs through this; the previous frame's guides are kept by the backend.
+#include "core/views.h"
+
+namespace svgf {
+
+struct FrameInputs {
+  GuideView guides;
+  ConstRgbView color;
+  ConstRgbView albedo;
+  ConstRgbView emission;  // no planes when the frame has no emission channel
+};
+
+}  // namespace svgf

@@ -1,0 +1,195 @@
+#pragma once
+// The CUDA backend of a denoiser written once (the concept is described in
+// kernels_cpu/cpu_backend.h): the CUDA engine, device buffers, one pinned upload of a frame's
+// inputs and one download of its output. The two input slots alternate, so the previous frame's
+// upload is this frame's previous guides (no copy). Host-compilable.
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+#include "core/denoiser.h"
+#include "core/frame.h"
+#include "core/frame_inputs.h"
+#include "kernels_cuda/cuda_engine.h"
+#include "kernels_cuda/cuda_handles.h"
+#include "kernels_cuda/device_array.h"
+
+namespace svgf::cuda {
+
+class CudaBackend {
+ public:
+  using Engine = CudaEngine;
+  using Buffer = DeviceArray<float>;
+
+  explicit CudaBackend(const EngineConfig& config)
+      : mode_(config.mode), engine_(checked_shape(config)) {
+    SVGF_CUDA_CHECK(cudaGetDevice(&device_), "cudaGetDevice");
+  }
+
+  Engine& engine() { return engine_; }
+  Mode mode() const { return mode_; }
+
+  std::string description() const {
+    cudaDeviceProp prop{};
+    const bool named = cudaGetDeviceProperties(&prop, device_) == cudaSuccess;
+    if (!named) (void)cudaGetLastError();
+    const LaunchShape s = engine_.shape();
+    return std::string("cuda ") + to_string(mode_) + ", " +
+           (named ? std::string(prop.name) : "device " + std::to_string(device_)) + ", block " +
+           std::to_string(s.block_x) + "x" + std::to_string(s.block_y);
+  }
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  size_t pixels() const { return static_cast<size_t>(width_) * static_cast<size_t>(height_); }
+
+  // Also makes this denoiser's device current for the frame.
+  bool resize(int w, int h) {
+    SVGF_CUDA_CHECK(cudaSetDevice(device_), "cudaSetDevice");
+    if (w == width_ && h == height_) return false;
+    check_frame_size_unchanged(width_, height_, w, h);
+    width_ = w;
+    height_ = h;
+    try {
+      for (int s = 0; s < 2; ++s) allocate(inputs_[s], kInputPlanes, "frame inputs");
+      allocate(output_, 3, "output");
+      staging_in_.resize(kInputPlanes * pixels(), "the pinned input staging buffer");
+      staging_out_.resize(3 * pixels(), "the pinned output staging buffer");
+    } catch (...) {
+      release();
+      throw;
+    }
+    return true;
+  }
+  void release() {
+    for (int s = 0; s < 2; ++s) inputs_[s].resize(0);
+    output_.resize(0);
+    staging_in_.resize(0, "");
+    staging_out_.resize(0, "");
+    width_ = height_ = 0;
+  }
+
+  // `what` and the frame size name the buffer in an out-of-memory error.
+  void allocate(Buffer& b, int channels, const char* what) {
+    const std::string named = std::string(what) + " (" + std::to_string(width_) + "x" +
+                              std::to_string(height_) + ", " + std::to_string(channels) +
+                              " planes)";
+    b.resize(static_cast<size_t>(channels) * pixels(), named.c_str());
+  }
+  float* plane(const Buffer& b, int c) const { return b.get() + static_cast<size_t>(c) * pixels(); }
+  Image read(const Buffer& b) const {
+    SVGF_CUDA_CHECK(cudaSetDevice(device_), "cudaSetDevice");
+    SVGF_CUDA_CHECK(cudaStreamSynchronize(engine_.stream()), "read_buffer: cudaStreamSynchronize");
+    Image im(width_, height_, static_cast<int>(b.size() / pixels()));
+    b.download(im.data().data(), im.data().size());
+    return im;
+  }
+
+  // Uploads the frame: its planes copied into pinned memory, then one DMA transfer, timed as
+  // the engine's upload stage.
+  FrameInputs inputs(const Frame& in) {
+    const size_t n = pixels();
+    float* staging = staging_in_.get();
+    auto stage = [&](const float* src, int plane) {
+      std::memcpy(staging + plane * n, src, n * sizeof(float));
+    };
+    for (int c = 0; c < 3; ++c) {
+      stage(in.color.plane(c), kColor + c);
+      stage(in.albedo.plane(c), kAlbedo + c);
+      stage(in.normal.plane(c), kNormal + c);
+    }
+    stage(in.depth.plane(0), kDepth);
+    stage(in.depth_gradient.plane(0), kDepthDx);
+    stage(in.depth_gradient.plane(1), kDepthDy);
+    stage(in.motion.plane(0), kMotionX);
+    stage(in.motion.plane(1), kMotionY);
+    std::memcpy(staging + kMeshId * n, in.mesh_id.data(), n * sizeof(uint32_t));
+    const bool emission = !in.emission.empty();
+    if (emission)
+      for (int c = 0; c < 3; ++c) stage(in.emission.plane(c), kEmission + c);
+    engine_.mark(kUploadStage);
+    inputs_[slot_].upload_async(staging, (emission ? kInputPlanes : kRequiredPlanes) * n,
+                                engine_.stream());
+    FrameInputs f;
+    f.guides = guides(slot_);
+    f.color = rgb(inputs_[slot_], kColor);
+    f.albedo = rgb(inputs_[slot_], kAlbedo);
+    if (emission) f.emission = rgb(inputs_[slot_], kEmission);
+    return f;
+  }
+  GuideView previous_guides() const { return guides(1 - slot_); }
+  RgbView output(Image&) { return rgb(output_, 0); }
+
+  // Downloads the output and waits for the frame (raising any fault of its kernels).
+  void finish(const Frame&, Image& out) {
+    const size_t n = pixels();
+    engine_.mark(kDownloadStage);
+    output_.download_async(staging_out_.get(), 3 * n, engine_.stream());
+    engine_.end_frame();
+    out.ensure_shape(width_, height_, 3);  // overwritten whole by the copy below
+    std::memcpy(out.data().data(), staging_out_.get(), 3 * n * sizeof(float));
+    slot_ = 1 - slot_;
+  }
+
+ private:
+  // Planes of one frame's upload, in order; mesh_id travels as raw 32-bit words. The optional
+  // emission comes last, so a frame without it uploads kRequiredPlanes only.
+  enum InputPlane : int {
+    kColor = 0,     // 3
+    kAlbedo = 3,    // 3
+    kNormal = 6,    // 3
+    kDepth = 9,
+    kDepthDx = 10,
+    kDepthDy = 11,
+    kMotionX = 12,
+    kMotionY = 13,
+    kMeshId = 14,
+    kRequiredPlanes = 15,
+    kEmission = 15,  // 3, optional
+    kInputPlanes = 18
+  };
+
+  static LaunchShape checked_shape(const EngineConfig& config) {
+    const LaunchShape s{config.block_x, config.block_y};
+    if (s.block_x < 1 || s.block_y < 1)
+      throw std::invalid_argument("CUDA block shape " + std::to_string(s.block_x) + "x" +
+                                  std::to_string(s.block_y) + " is empty");
+    int device = 0, max_threads = 0;
+    SVGF_CUDA_CHECK(cudaGetDevice(&device), "cudaGetDevice");
+    SVGF_CUDA_CHECK(cudaDeviceGetAttribute(&max_threads, cudaDevAttrMaxThreadsPerBlock, device),
+                    "cudaDeviceGetAttribute");
+    if (static_cast<long long>(s.block_x) * s.block_y > max_threads)
+      throw std::invalid_argument("CUDA block shape " + std::to_string(s.block_x) + "x" +
+                                  std::to_string(s.block_y) + " has more than the device's " +
+                                  std::to_string(max_threads) + " threads per block");
+    return s;
+  }
+
+  RgbView rgb(const Buffer& a, int first_plane) const {
+    return {plane(a, first_plane), plane(a, first_plane + 1), plane(a, first_plane + 2)};
+  }
+
+  GuideView guides(int slot) const {
+    GuideView g;
+    g.width = width_;
+    g.height = height_;
+    g.depth = plane(inputs_[slot], kDepth);
+    g.depth_dx = plane(inputs_[slot], kDepthDx);
+    g.depth_dy = plane(inputs_[slot], kDepthDy);
+    g.normal = rgb(inputs_[slot], kNormal);
+    g.mesh_id = reinterpret_cast<const uint32_t*>(plane(inputs_[slot], kMeshId));
+    g.motion_x = plane(inputs_[slot], kMotionX);
+    g.motion_y = plane(inputs_[slot], kMotionY);
+    return g;
+  }
+
+  Mode mode_;
+  int device_ = 0;
+  CudaEngine engine_;
+  int width_ = 0, height_ = 0;
+  int slot_ = 0;  // input slot the next frame is uploaded into
+  Buffer inputs_[2], output_;
+  PinnedBuffer<float> staging_in_, staging_out_;
+};
+
+}  // namespace svgf::cuda

@@ -1,0 +1,89 @@
+#pragma once
+// The one generic launcher: any pixel kernel (a struct with SVGF_HD operator()(x, y)) becomes a
+// CUDA launch, one thread per pixel. Included only by .cu files: the file that instantiates a
+// method (kernels_cuda/<method>_cuda.cu) instantiates every kernel its pipeline runs, and a test
+// compiled by nvcc can run any single kernel. Compiled with the exact flags
+// (kernels_cuda/CMakeLists.txt): each float operation rounds as on the CPU; fast mode's
+// arithmetic is chosen explicitly by its functors (core/arith.h), not by compiler flags.
+#include <cstdint>
+#include <string>
+#include <type_traits>
+
+#include <cuda_runtime.h>
+
+#include "kernels_cuda/cuda_check.h"
+#include "kernels_cuda/cuda_engine.h"
+#include "kernels_cuda/device_array.h"
+#include "kernels_cuda/launch_config.h"
+#include "kernels_cuda/pixel_kernels.cuh"
+
+namespace svgf::cuda {
+
+// The kernel struct travels by value as a launch parameter (a few hundred bytes of views and
+// parameters, well under the 4 KB limit).
+template <class K>
+__global__ void pixel_kernel(const K k, int width, int height) {
+  const int x = device::pixel_x();
+  const int y = device::pixel_y();
+  if (x < width && y < height) k(x, y);
+}
+
+// For kernels returning bool: counts the pixels that returned true.
+template <class K>
+__global__ void counting_pixel_kernel(const K k, int width, int height,
+                                      unsigned long long* count) {
+  const int x = device::pixel_x();
+  const int y = device::pixel_y();
+  const bool flag = x < width && y < height && k(x, y);
+  device::count_block(flag, count);
+}
+
+// Stream-ordered launch; `count` (device memory) set: a counting kernel. Throws CudaError
+// naming `what` when the launch is refused.
+template <class K>
+void launch(const K& k, int width, int height, LaunchShape shape, cudaStream_t stream,
+            const char* what, unsigned long long* count = nullptr) {
+  if (width <= 0 || height <= 0) return;
+  const LaunchGeometry g = launch_geometry(width, height, shape);
+  if constexpr (std::is_same_v<decltype(k(0, 0)), bool>) {
+    if (count) {
+      counting_pixel_kernel<K><<<g.grid, g.block, 0, stream>>>(k, width, height, count);
+      check_launch(what, g);
+      return;
+    }
+  }
+  pixel_kernel<K><<<g.grid, g.block, 0, stream>>>(k, width, height);
+  check_launch(what, g);
+}
+
+template <class Kernel>
+void CudaEngine::run(const char* stage, const Kernel& kernel, int width, int height) {
+  mark(stage);
+  launch(kernel, width, height, shape_, stream_.get(), stage);
+}
+
+template <class Kernel>
+void CudaEngine::run_counting(const char* stage, const Kernel& kernel, int width, int height) {
+  mark(stage);
+  launch(kernel, width, height, shape_, stream_.get(), stage, counter_.get());
+}
+
+// One kernel on the default stream, waited for: for tests and tools. Views inside the kernel
+// must point to device memory. A counting kernel (returning bool) returns the count, any other
+// 0. Throws CudaError naming `what` on a refused launch or a fault while running.
+template <class K>
+int64_t run(const K& k, int width, int height, LaunchShape shape = {},
+            const char* what = "kernel") {
+  constexpr bool counting = std::is_same_v<decltype(k(0, 0)), bool>;
+  DeviceArray<unsigned long long> count(1);
+  SVGF_CUDA_CHECK(cudaMemsetAsync(count.get(), 0, sizeof(unsigned long long), nullptr),
+                  "cudaMemset of a counter");
+  launch(k, width, height, shape, nullptr, what, counting ? count.get() : nullptr);
+  SVGF_CUDA_CHECK(cudaStreamSynchronize(nullptr), std::string("kernel '") + what + "' execution");
+  if (!counting) return 0;
+  unsigned long long n = 0;
+  count.download(&n, 1);
+  return static_cast<int64_t>(n);
+}
+
+}  // namespace svgf::cuda

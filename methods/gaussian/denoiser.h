@@ -1,0 +1,96 @@
+#pragma once
+// The Gaussian baseline behind the Denoiser interface, written once over a backend
+// (kernels_cpu/cpu_backend.h). A frame's data flow:
+//   sanitize  color -> scratch, bad samples replaced by 0 and counted (core/sanitize.h)
+//   blur_x    scratch -> blurred, along rows
+//   blur_y    blurred -> output, along columns
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/denoiser.h"
+#include "core/frame_inputs.h"
+#include "core/sanitize.h"
+#include "methods/gaussian/blur.h"
+#include "methods/gaussian/params.h"
+
+namespace svgf {
+
+namespace gaussian_stage {
+inline constexpr const char* kSanitize = "sanitize";
+inline constexpr const char* kBlurX = "blur_x";
+inline constexpr const char* kBlurY = "blur_y";
+}  // namespace gaussian_stage
+
+template <class Arith, class Engine>
+void run_gaussian_frame(Engine& engine, ConstRgbView color, RgbView scratch, RgbView blurred,
+                        RgbView output, int w, int h, const GaussianParams& p) {
+  namespace stage = gaussian_stage;
+  engine.run_counting(stage::kSanitize, SanitizeKernel{w, color, scratch}, w, h);
+  GaussianPass<Arith> pass{w, h, scratch, blurred, 1, 0, p.effective_radius(),
+                           -1.f / (2.f * p.sigma * p.sigma)};
+  engine.run(stage::kBlurX, pass, w, h);
+  pass.in = blurred;
+  pass.out = output;
+  pass.dx = 0;
+  pass.dy = 1;
+  engine.run(stage::kBlurY, pass, w, h);
+}
+
+template <class Backend>
+class GaussianDenoiser final : public Denoiser {
+ public:
+  GaussianDenoiser(const GaussianParams& params, const EngineConfig& config)
+      : params_(params), mode_(config.mode), backend_(config) {
+    params_.validate();
+  }
+
+  void denoise(const Frame& in, Image& out) override {
+    check_frame_consistent(in);
+    if (backend_.resize(in.width(), in.height())) {
+      backend_.allocate(scratch_, 3, "sanitized color");
+      backend_.allocate(blurred_, 3, "blurred rows");
+    }
+    auto& engine = backend_.engine();
+    engine.begin_frame();
+    const FrameInputs cur = backend_.inputs(in);
+    const RgbView output = backend_.output(out);
+#if defined(__CUDACC__)
+    if (mode_ == Mode::Fast)
+      run_gaussian_frame<FastArith>(engine, cur.color, rgb(scratch_), rgb(blurred_), output,
+                                    in.width(), in.height(), params_);
+    else
+#endif
+      run_gaussian_frame<ExactArith>(engine, cur.color, rgb(scratch_), rgb(blurred_), output,
+                                     in.width(), in.height(), params_);
+    backend_.finish(in, out);
+    report_.times = engine.times();
+    report_.replaced_samples = engine.counted();
+  }
+
+  void reset() override {}  // no history
+  const FrameReport& last_report() const override { return report_; }
+  std::string description() const override { return "gaussian " + backend_.description(); }
+  std::vector<std::string> stages() const override {
+    return {gaussian_stage::kSanitize, gaussian_stage::kBlurX, gaussian_stage::kBlurY};
+  }
+  std::vector<std::string> debug_buffers() const override { return {"sanitized", "blurred_x"}; }
+  Image read_buffer(std::string_view name) const override {
+    if (name != "sanitized" && name != "blurred_x")
+      throw unknown_buffer("gaussian", name, debug_buffers());
+    if (backend_.width() == 0) return Image();
+    return backend_.read(name == "sanitized" ? scratch_ : blurred_);
+  }
+
+ private:
+  RgbView rgb(typename Backend::Buffer& b) {
+    return {backend_.plane(b, 0), backend_.plane(b, 1), backend_.plane(b, 2)};
+  }
+  GaussianParams params_;
+  Mode mode_;
+  Backend backend_;
+  typename Backend::Buffer scratch_, blurred_;
+  FrameReport report_;
+};
+
+}  // namespace svgf

@@ -1,0 +1,136 @@
+#pragma once
+// SVGF behind the Denoiser interface, written once over a backend (kernels_cpu/cpu_backend.h
+// says what a backend provides; kernels_cpu/svgf_cpu.cpp and kernels_cuda/svgf_cuda.cu
+// instantiate it). The history ping-pongs between two slots: a frame reads slot `slot_` and
+// writes the other.
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/denoiser.h"
+#include "core/frame_inputs.h"
+#include "methods/svgf/params.h"
+#include "methods/svgf/pipeline.h"
+#include "methods/svgf/stages.h"
+
+namespace svgf {
+
+template <class Backend>
+class SvgfDenoiser final : public Denoiser {
+ public:
+  SvgfDenoiser(const SvgfParams& params, const EngineConfig& config)
+      : params_(params), mode_(config.mode), backend_(config) {}
+
+  void denoise(const Frame& in, Image& out) override {
+    check_frame_consistent(in);
+    if (backend_.resize(in.width(), in.height())) allocate();
+    auto& engine = backend_.engine();
+    engine.begin_frame();
+    const FrameInputs cur = backend_.inputs(in);
+
+    const int prev = slot_;
+    const int next = 1 - slot_;
+    SvgfFrameBuffers b;
+    b.guides = cur.guides;
+    b.prev_guides = backend_.previous_guides();
+    b.color = cur.color;
+    b.albedo = cur.albedo;
+    b.emission = cur.emission;
+    b.prev_color = rgb(color_history_[prev]);
+    b.prev_moment1 = backend_.plane(moments_[prev], 0);
+    b.prev_moment2 = backend_.plane(moments_[prev], 1);
+    b.prev_history = backend_.plane(history_[prev], 0);
+    b.next_color = rgb(color_history_[next]);
+    b.next_moment1 = backend_.plane(moments_[next], 0);
+    b.next_moment2 = backend_.plane(moments_[next], 1);
+    b.next_history = backend_.plane(history_[next], 0);
+    b.illumination = rgb(illumination_);
+    b.accumulated = {rgb(accumulated_), backend_.plane(accumulated_, 3)};
+    b.signal[0] = backend_.plane(signal_[0], 0);
+    b.signal[1] = backend_.plane(signal_[1], 0);
+    b.output = backend_.output(out);
+#if defined(__CUDACC__)
+    if (mode_ == Mode::Fast) {
+      b.packed_guides = backend_.plane(packed_guides_, 0);
+      run_svgf_frame<SvgfFast>(engine, b, params_, has_history_);
+    } else
+#endif
+      run_svgf_frame<SvgfExact>(engine, b, params_, has_history_);
+    backend_.finish(in, out);  // waits for the frame; raises any fault of its kernels
+
+    slot_ = next;
+    has_history_ = true;
+    report_.times = engine.times();
+    report_.replaced_samples = engine.counted();
+  }
+
+  void reset() override { has_history_ = false; }
+  const FrameReport& last_report() const override { return report_; }
+  std::string description() const override { return "svgf " + backend_.description(); }
+  std::vector<std::string> stages() const override { return svgf_stage::all(); }
+  std::vector<std::string> debug_buffers() const override { return svgf_buffer::all(); }
+
+  Image read_buffer(std::string_view name) const override {
+    namespace buf = svgf_buffer;
+    const auto pick = [&]() -> const typename Backend::Buffer* {
+      if (name == buf::kIllumination) return &illumination_;
+      if (name == buf::kAccumulated) return &accumulated_;
+      if (name == buf::kMoments) return &moments_[slot_];
+      if (name == buf::kHistoryLength) return &history_[slot_];
+      if (name == buf::kColorHistory) return &color_history_[slot_];
+      return nullptr;
+    };
+    const typename Backend::Buffer* which = pick();
+    if (!which) throw unknown_buffer("svgf", name, debug_buffers());
+    if (backend_.width() == 0) return Image();
+    return backend_.read(*which);
+  }
+
+ private:
+  RgbView rgb(typename Backend::Buffer& buffer) {
+    return {backend_.plane(buffer, 0), backend_.plane(buffer, 1), backend_.plane(buffer, 2)};
+  }
+
+  void allocate() {
+    try {
+      for (int s = 0; s < 2; ++s) {
+        backend_.allocate(color_history_[s], 3, "color history");
+        backend_.allocate(moments_[s], 2, "moments");
+        backend_.allocate(history_[s], 1, "history length");
+        backend_.allocate(signal_[s], 4, "a-trous buffers");
+      }
+      backend_.allocate(illumination_, 3, "illumination");
+      backend_.allocate(accumulated_, 4, "accumulation");
+      if (mode_ == Mode::Fast) backend_.allocate(packed_guides_, 4, "packed guides");
+    } catch (...) {
+      release();  // nothing half-made stays; a later frame may try again
+      throw;
+    }
+    has_history_ = false;
+  }
+
+  void release() {
+    for (int s = 0; s < 2; ++s) {
+      color_history_[s] = {};
+      moments_[s] = {};
+      history_[s] = {};
+      signal_[s] = {};
+    }
+    illumination_ = {};
+    accumulated_ = {};
+    packed_guides_ = {};
+    backend_.release();
+  }
+
+  SvgfParams params_;
+  Mode mode_;
+  Backend backend_;
+  int slot_ = 0;  // history slot the next frame reads
+  bool has_history_ = false;
+  typename Backend::Buffer color_history_[2], moments_[2], history_[2];
+  typename Backend::Buffer illumination_, accumulated_, signal_[2], packed_guides_;
+  FrameReport report_;
+};
+
+}  // namespace svgf

@@ -1,0 +1,47 @@
+#pragma once
+// How SVGF's functors are evaluated and stored: exact mode (ExactArith over separate float
+// planes) or fast mode (FastArith over packed Packed4 pixels, CUDA only). A flavor is a choice
+// of arithmetic and storage over the same functors, never a second copy of a formula; it also
+// says whether the pipeline fuses stages into one launch (methods/svgf/pipeline.h).
+#include "core/arith.h"
+#include "core/views.h"
+#include "methods/svgf/edge_stopping.h"
+
+namespace svgf {
+
+struct SvgfExact {
+  using Arith = ExactArith;
+  using Guides = GuideView;             // separate depth and normal planes
+  using Signal = IllumVarView;          // color + variance, four planes
+  using ConstSignal = ConstIllumVarView;
+  // Every stage is its own pass (so each can be timed, read back and compared alone).
+  static constexpr bool kFused = false;
+  static const char* name() { return "exact"; }
+  // The normal weight's power: the run-time form (the same bits as the compile-time one).
+  template <class Body>
+  static void with_normal_power(float phi_normal, const Body& body) {
+    body(NormalPower<Arith>::of(phi_normal));
+  }
+};
+
+#if defined(__CUDACC__)
+struct SvgfFast {
+  using Arith = FastArith;
+  using Guides = PackedGuides;          // depth + normal as one Packed4
+  using Signal = PackedIllumVar<Packed4>;
+  using ConstSignal = PackedIllumVar<const Packed4>;
+  // Demodulate + reproject + guide packing in one launch; the feedback copy and the
+  // remodulation ride on the a-trous iterations that produce them.
+  static constexpr bool kFused = true;
+  static const char* name() { return "fast"; }
+  // The default 128 = 2^7 as seven squarings known at compile time.
+  template <class Body>
+  static void with_normal_power(float phi_normal, const Body& body) {
+    const NormalPower<Arith> p = NormalPower<Arith>::of(phi_normal);
+    if (p.squarings == 7) body(NormalPowerFixed<7>());
+    else body(p);
+  }
+};
+#endif
+
+}  // namespace svgf

@@ -1,0 +1,72 @@
+#pragma once
+// Stage 3: estimate variance (paper Sec. 4.2, Falcor's SVGFFilterMoments).
+// With history >= spatial_variance_history the temporal variance from the moments passes
+// through. A younger history has too few samples for it, so the luminance moments are instead
+// gathered over a 7x7 bilateral neighbourhood (the color is filtered the same way) and the
+// variance boosted by spatial_variance_history / history.
+#include "methods/svgf/edge_stopping.h"
+#include "methods/svgf/flavors.h"
+#include "methods/svgf/params.h"
+#include "core/views.h"
+
+namespace svgf {
+
+template <class Flavor, class Power = NormalPower<typename Flavor::Arith>,
+          class Out = typename Flavor::Signal>
+struct VarianceEstimate {
+  using Arith = typename Flavor::Arith;
+  typename Flavor::Guides guides;
+  ConstIllumVarView accumulated;  // from reproject (separate planes in every flavor)
+  const float* moment1 = nullptr;
+  const float* moment2 = nullptr;
+  const float* history = nullptr;
+  Out out;
+  SvgfParams params;
+
+  SVGF_HD void operator()(int x, int y) const {
+    const int i = guides.index(x, y);
+    const float h = history[i];
+    const Vec3 center_color = accumulated.color.load(i);
+    const DepthNormal gc = guides.depth_normal(i);
+    if (!(h < static_cast<float>(params.spatial_variance_history)) || !(gc.depth > 0.f)) {
+      out.store(i, make_color_var(center_color, accumulated.variance[i]));
+      return;
+    }
+    const EdgeSample c{gc.depth, gc.normal, luminance(center_color)};
+    const float inv_phi_z = inv_depth_tolerance<Arith>(
+        params.spatial_variance_phi_depth, guides.depth_fwidth(i), params.depth_gradient_floor);
+    const float inv_phi_l = Arith::recip(params.phi_color);
+    const Power normal_power = Power::of(params.phi_normal);
+    const int r = params.spatial_variance_radius;
+    float weight_sum = 0.f;
+    Vec3 color_sum;
+    Vec2 moments_sum;
+    for (int dy = -r; dy <= r; ++dy) {
+      for (int dx = -r; dx <= r; ++dx) {
+        const int xq = x + dx;
+        const int yq = y + dy;
+        if (!guides.inside(xq, yq)) continue;
+        const int j = guides.index(xq, yq);
+        const Vec3 cq = accumulated.color.load(j);
+        const DepthNormal gq = guides.depth_normal(j);
+        const EdgeSample q{gq.depth, gq.normal, luminance(cq)};
+        const float w =
+            edge_stopping_weight<Arith>(c, q, Arith::tap_depth_scale(inv_phi_z, dx, dy, 1),
+                                        normal_power, inv_phi_l);
+        weight_sum = weight_sum + w;
+        color_sum = Arith::mad(cq, w, color_sum);
+        moments_sum = Arith::mad(make_vec2(moment1[j], moment2[j]), w, moments_sum);
+      }
+    }
+    const auto by_weight = Arith::divide_by(max_f(weight_sum, 1e-6f));
+    const Vec2 m = by_weight(moments_sum);
+    out.store(i, make_color_var(by_weight(color_sum),
+                                max_f(0.f, m.y - m.x * m.x) *
+                                    (static_cast<float>(params.spatial_variance_history) / h)));
+  }
+};
+
+// Exact mode's estimate over separate planes (the CPU row drivers are proven equal to it).
+using VarianceKernel = VarianceEstimate<SvgfExact>;
+
+}  // namespace svgf
