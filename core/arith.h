@@ -19,6 +19,11 @@ namespace svgf {
 
 struct ExactArith {
   static constexpr bool kExact = true;
+  // max/min/abs with the project's NaN rules (core/vec.h: max_f(NaN, b) is b, max_f(a, NaN) is
+  // NaN), which the edge-stopping weights rely on; the same select on both sides.
+  SVGF_HD static float max(float a, float b) { return max_f(a, b); }
+  SVGF_HD static float min(float a, float b) { return min_f(a, b); }
+  SVGF_HD static float abs(float a) { return abs_f(a); }
   SVGF_HD static float exp_nonpositive(float x) { return det_exp_nonpositive(x); }
   SVGF_HD static float pow(float x, float y) { return det_pow(x, y); }
   SVGF_HD static float dot(Vec3 a, Vec3 b) { return svgf::dot(a, b); }
@@ -65,6 +70,12 @@ SVGF_HD constexpr float inv_distance_small(int dx, int dy) {
 #if defined(__CUDACC__)
 struct FastArith {
   static constexpr bool kExact = false;
+  // One instruction each (FMNMX, FADD |x|). fmaxf/fminf return the non-NaN operand: where the
+  // exact rules keep a NaN to zero a weight, these drop it instead; the callers' results agree
+  // (edge_stopping_weight: a NaN normal gives cos 0, hence weight 0, either way).
+  __device__ __forceinline__ static float max(float a, float b) { return fmaxf(a, b); }
+  __device__ __forceinline__ static float min(float a, float b) { return fminf(a, b); }
+  __device__ __forceinline__ static float abs(float a) { return fabsf(a); }
   __device__ __forceinline__ static float exp_nonpositive(float x) { return __expf(x); }
   __device__ __forceinline__ static float pow(float x, float y) {
     return x > 0.f ? __powf(x, y) : (y > 0.f ? 0.f : 1.f);

@@ -53,6 +53,7 @@ SVGF_HD bool is_finite(float x) { return (x - x) == 0.f; }
 SVGF_HD bool is_finite(Vec3 v) { return is_finite(v.x) && is_finite(v.y) && is_finite(v.z); }
 
 // Rec. 709 luminance, as in Falcor's SVGF.
-SVGF_HD float luminance(Vec3 c) { return (0.2126f * c.x + 0.7152f * c.y) + 0.0722f * c.z; }
+SVGF_HD Vec3 rec709_weights() { return make_vec3(0.2126f, 0.7152f, 0.0722f); }
+SVGF_HD float luminance(Vec3 c) { return dot(rec709_weights(), c); }
 
 }  // namespace svgf

@@ -3,6 +3,7 @@
 // host buffers, and a frame's inputs read in place. What a backend provides:
 //   Engine& engine()                       runs pixel kernels (run, run_counting), times stages
 //   using Buffer; allocate(buffer, channels, what)  a planar float buffer of the frame's size
+//   set_method_planes(n)                   how many planes the method allocates (for errors)
 //   float* plane(buffer, c); Image read(buffer)      its planes as views; a host copy
 //   bool resize(w, h)                      frame size (true when buffers must be reallocated)
 //   FrameInputs inputs(frame)              this frame's inputs on the backend's side
@@ -48,6 +49,7 @@ class CpuBackend {
   }
   void release() { width_ = height_ = 0; }
 
+  void set_method_planes(int) {}
   void allocate(Buffer& b, int channels, const char*) { b = Image(width_, height_, channels); }
   float* plane(Buffer& b, int c) const { return b.plane(c); }
   Image read(const Buffer& b) const { return b; }

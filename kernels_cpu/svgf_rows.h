@@ -14,13 +14,20 @@ namespace svgf::cpu {
 void run_atrous_rows(const AtrousKernel& kernel, int width, int height);
 void run_variance_rows(const VarianceKernel& kernel, int width, int height);
 
-template <>
-struct PixelDriver<AtrousKernel> {
-  static void run(const AtrousKernel& k, int w, int h) { run_atrous_rows(k, w, h); }
+// Exact mode's kernels with any normal-weight power (the rows pick theirs from phi_normal).
+template <class Power>
+struct PixelDriver<AtrousIteration<SvgfExact, Power, IllumVarView>> {
+  static void run(const AtrousIteration<SvgfExact, Power, IllumVarView>& k, int w, int h) {
+    run_atrous_rows(AtrousKernel{k.guides, k.in, k.out, k.step, k.params}, w, h);
+  }
 };
-template <>
-struct PixelDriver<VarianceKernel> {
-  static void run(const VarianceKernel& k, int w, int h) { run_variance_rows(k, w, h); }
+template <class Power>
+struct PixelDriver<VarianceEstimate<SvgfExact, Power, IllumVarView>> {
+  static void run(const VarianceEstimate<SvgfExact, Power, IllumVarView>& k, int w, int h) {
+    run_variance_rows(
+        VarianceKernel{k.guides, k.accumulated, k.moment1, k.moment2, k.history, k.out, k.params},
+        w, h);
+  }
 };
 
 }  // namespace svgf::cpu

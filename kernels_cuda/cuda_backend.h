@@ -69,11 +69,16 @@ class CudaBackend {
     width_ = height_ = 0;
   }
 
-  // `what` and the frame size name the buffer in an out-of-memory error.
+  // How many float planes of the frame's size the method allocates (for the error message).
+  void set_method_planes(int planes) { method_planes_ = planes; }
+
+  // `what` and what the whole frame size needs name the buffer in an out-of-memory error.
   void allocate(Buffer& b, int channels, const char* what) {
+    const size_t planes = static_cast<size_t>(2 * kInputPlanes + 3 + method_planes_);
+    const size_t mib = (planes * pixels() * sizeof(float) + (1u << 20) - 1) >> 20;
     const std::string named = std::string(what) + " (" + std::to_string(width_) + "x" +
-                              std::to_string(height_) + ", " + std::to_string(channels) +
-                              " planes)";
+                              std::to_string(height_) + " frames need about " +
+                              std::to_string(mib) + " MiB of device memory in all)";
     b.resize(static_cast<size_t>(channels) * pixels(), named.c_str());
   }
   float* plane(const Buffer& b, int c) const { return b.get() + static_cast<size_t>(c) * pixels(); }
@@ -188,6 +193,7 @@ class CudaBackend {
   CudaEngine engine_;
   int width_ = 0, height_ = 0;
   int slot_ = 0;  // input slot the next frame is uploaded into
+  int method_planes_ = 0;
   Buffer inputs_[2], output_;
   PinnedBuffer<float> staging_in_, staging_out_;
 };

@@ -1,40 +1,73 @@
 #!/usr/bin/env bash
 # The GPU checks of docs/cuda.md, on a machine with a CUDA device, from the repository root:
-# the full GPU test binary, compute-sanitizer memcheck and racecheck on its reduced mode, and
-# the exact-vs-fast benchmark. Runs on a bundle made on the build machine with
-#   ../shared/gpu/bundle .gpu build-cuda/tests/svgf_gpu_tests
-# Usage: kernels_cuda/run_gpu_checks.sh [BUNDLE_DIR [LOG_DIR]]   (logs default to $OUT)
+# the full GPU test binary, the CUDA variants of the OpenCV checks, compute-sanitizer memcheck
+# and racecheck on the GPU tests' reduced mode, and (when svgf-bench bundles are given) the
+# 1080p speed of this build against a baseline build, interleaved in one sitting.
+# Bundles made on the build machine with
+#   ../shared/gpu/bundle .gpu/tests build/tests/svgf_gpu_tests build/tests/svgf_opencv_tests
+#   ../shared/gpu/bundle .gpu/bench build-bench/bench/svgf-bench          (this build)
+#   ../shared/gpu/bundle .gpu/base  OLD/build-bench/bench/svgf-bench      (optional baseline)
+# Usage: kernels_cuda/run_gpu_checks.sh [LOG_DIR [tests|speed|all]]   (logs default to $OUT)
 set -uo pipefail
-bundle=${1:-.gpu}
-logs=${2:-${OUT:-gpu-logs}}
+logs=${1:-${OUT:-gpu-logs}}
+what=${2:-all}
 mkdir -p "$logs"
 sanitizer=$(command -v compute-sanitizer ||
   ls /usr/local/cuda*/bin/compute-sanitizer /usr/local/cuda*/compute-sanitizer/compute-sanitizer \
     2>/dev/null | head -1)
 
 { nvidia-smi; nvidia-smi --query-gpu=name,driver_version,memory.total,compute_cap --format=csv
-  "$sanitizer" --version; } >"$logs/device.txt" 2>&1
-cat "$logs/device.txt"
+  "$sanitizer" --version; lscpu | grep -E "Model name|^CPU\(s\)"; } >"$logs/device.txt" 2>&1
+grep -E "Model name|H100|H200" "$logs/device.txt" | head -3
 
-timeout 300 "$bundle/run" svgf_gpu_tests --durations yes >"$logs/gpu_tests.txt" 2>&1
+if [ "$what" != speed ]; then
+timeout 300 .gpu/tests/run svgf_gpu_tests --durations yes >"$logs/gpu_tests.txt" 2>&1
 rc_tests=$?
-tail -n 25 "$logs/gpu_tests.txt"
+tail -n 12 "$logs/gpu_tests.txt"
+timeout 120 .gpu/tests/run svgf_opencv_tests "[cuda]" >"$logs/opencv_cuda.txt" 2>&1
+rc_opencv=$?
+tail -n 3 "$logs/opencv_cuda.txt"
 
-# The bundle's libraries, unpacked by the run above, for the sanitizer to start the binary.
-lib=/tmp/bundle-runtime-$(md5sum "$bundle/runtime.tar.xz" | cut -c1-12)
+# The bundle's libraries, unpacked by the runs above, for the sanitizer to start the binary.
+lib=/tmp/bundle-runtime-$(md5sum .gpu/tests/runtime.tar.xz | cut -c1-12)
 rc_memcheck=-1 rc_racecheck=-1
 for tool in memcheck racecheck; do
   extra=()
   [ "$tool" = memcheck ] && extra=(--leak-check full)
   LD_LIBRARY_PATH="$lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" timeout 200 \
     "$sanitizer" --tool "$tool" "${extra[@]}" --error-exitcode 99 \
-    "$bundle/bin/svgf_gpu_tests" --reduced '~[cuda-errors]~[bench]' >"$logs/$tool.txt" 2>&1
+    .gpu/tests/bin/svgf_gpu_tests --reduced '~[cuda-errors]~[bench]' >"$logs/$tool.txt" 2>&1
   rc=$?
   [ "$tool" = memcheck ] && rc_memcheck=$rc || rc_racecheck=$rc
   grep -E "ERROR SUMMARY|RACECHECK SUMMARY|LEAK SUMMARY|test cases|summary:" "$logs/$tool.txt"
 done
+echo "exit codes: tests $rc_tests, opencv cuda $rc_opencv, memcheck $rc_memcheck, racecheck $rc_racecheck"
+fi
+[ "$what" = tests ] && exit 0
 
-timeout 150 "$bundle/run" svgf_gpu_tests '[bench]' >"$logs/bench.txt" 2>&1
-rc_bench=$?
-grep -vE "^(~|=|-|$)" "$logs/bench.txt" | tail -n 20
-echo "exit codes: tests $rc_tests, memcheck $rc_memcheck, racecheck $rc_racecheck, bench $rc_bench"
+# Speed: 1080p, median of 200 frames after 20, default configuration; baseline and this build
+# alternate so that both see the same card state. Frames are rendered once into a shared cache.
+[ -x .gpu/bench/run ] || exit 0
+builds=(bench)
+[ -x .gpu/base/run ] && builds=(base bench)
+cache=/tmp/svgf-frame-cache
+for round in 1 2; do
+  for scene in camera-pan cornell-moving; do
+    for mode in fast exact; do
+      for b in "${builds[@]}"; do
+        json="$logs/speed_${b}_${scene}_${mode}_${round}.json"
+        timeout 240 .gpu/$b/run svgf-bench --backend cuda --mode $mode --size 1080p \
+          --scene $scene --frames 200 --warmup 20 --cache $cache --no-ceilings \
+          --json "$json" >/dev/null 2>"$logs/speed_${b}.err"
+        python3 - "$json" "$b $scene $mode round $round" <<'PY' || { echo "$b $scene $mode: failed"; tail -3 "$logs/speed_${b}.err"; }
+import json, sys
+t = json.load(open(sys.argv[1]))["timings"][0]
+f = t["frame_ms"]["filter"]
+stages = " ".join(f'{s["stage"]} {s["ms"]["median"]:.4f}' for s in t.get("stages", []))
+print(f'{sys.argv[2]}: median {f["median"]:.4f} ms p95 {f["p95"]:.4f} ms | {stages}')
+PY
+      done
+    done
+  done
+done | tee "$logs/speed.txt"
+rm -f "$logs"/speed_*.json  # the table above is what is kept

@@ -227,7 +227,7 @@ TEST_CASE("errors: CUDA failures are CudaError naming the kernel or the buffer",
     auto rgb = [](float* p) { return RgbView{p, p + 64, p + 128}; };
     const DemodulateKernel k{8, rgb(c.get()), rgb(a.get()), {}, rgb(out.get()), 1e-3f};
     try {
-      cuda::run(k, 8, 8, cuda::LaunchShape{64, 32});  // 2048 threads: more than a block holds
+      cuda::run(k, 8, 8, cuda::LaunchShape{64, 32}, "demodulate");  // 2048 threads: more than a block holds
       FAIL("no error");
     } catch (const cuda::CudaError& e) {
       INFO(e.what());

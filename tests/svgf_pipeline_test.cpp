@@ -198,3 +198,99 @@ TEST_CASE("pipeline: reset() restarts the history", "[pipeline]") {
   d->denoise(scene.frame(2), out);
   REQUIRE(d->read_buffer(svgf_buffer::kHistoryLength).at(1, 1, 0) == 1.f);
 }
+
+TEST_CASE("pipeline: the defaults are Falcor's SVGFPass values, as the pipeline uses them",
+          "[pipeline]") {
+  // The documented defaults (methods/svgf/params.h, docs/svgf.md), written out here, not read
+  // from the header...
+  SvgfParams falcor;
+  falcor.iterations = 4;
+  falcor.feedback_tap = 1;
+  falcor.phi_color = 10.f;
+  falcor.phi_normal = 128.f;
+  falcor.phi_depth = 1.f;
+  falcor.alpha = 0.05f;
+  falcor.moments_alpha = 0.2f;
+  falcor.history_cap = 32;
+  falcor.spatial_variance_history = 4;
+  falcor.spatial_variance_radius = 3;
+  falcor.spatial_variance_phi_depth = 3.f;
+  falcor.reproject_min_weight = 0.01f;
+  // ...and a default-configured denoiser gives the same bits as one given those values by
+  // hand, while moving any one of them changes the output: the pipeline reads what the
+  // configuration holds, and each default is the value it is documented to be.
+  // The synthetic scene's surfaces are flat and face the camera: bumps on the normals and a tilt
+  // of the depth let phi_normal and phi_depth matter.
+  test::SyntheticScene scene;
+  auto denoise_sequence = [&](Denoiser& d, const test::SyntheticScene& s, int frames) {
+    std::vector<Image> out;
+    for (int k = 0; k < frames; ++k) {
+      Frame f = s.frame(k);
+      for (int y = 0; y < f.height(); ++y)
+        for (int x = 0; x < f.width(); ++x) {
+          if (!(f.depth.at(x, y, 0) > 0.f)) continue;
+          f.depth.at(x, y, 0) += 0.02f * static_cast<float>(x);
+          f.depth_gradient.at(x, y, 0) += 0.02f;
+          const float bx = 0.15f * std::sin(0.9f * x), by = 0.15f * std::cos(0.7f * y);
+          float n[3] = {f.normal.at(x, y, 0) + bx, f.normal.at(x, y, 1) + by, f.normal.at(x, y, 2)};
+          const float len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+          for (int c = 0; c < 3; ++c) f.normal.at(x, y, c) = n[c] / len;
+        }
+      out.emplace_back();
+      d.denoise(f, out.back());
+    }
+    return out;
+  };
+  DenoiserConfig by_default = cpu_config(2);
+  DenoiserConfig by_hand = cpu_config(2);
+  by_hand.svgf = falcor;
+  auto a = make_denoiser(by_default);
+  auto b = make_denoiser(by_hand);
+  const auto out_a = denoise_sequence(*a, scene, 8);
+  const auto out_b = denoise_sequence(*b, scene, 8);
+  for (int k = 0; k < 8; ++k) test::require_identical(out_a[k], out_b[k], "frame " + std::to_string(k));
+
+  auto changed = [&](auto change) {
+    DenoiserConfig c = by_hand;
+    change(c.svgf);
+    auto d = make_denoiser(c);
+    const auto out = denoise_sequence(*d, scene, 8);
+    size_t differing = 0;
+    for (int k = 0; k < 8; ++k)
+      for (size_t i = 0; i < out[k].data().size(); ++i)
+        differing += out[k].data()[i] != out_b[k].data()[i];
+    return differing;
+  };
+  REQUIRE(changed([](SvgfParams& p) { p.iterations = 5; }) > 0);
+  REQUIRE(changed([](SvgfParams& p) { p.feedback_tap = 0; }) > 0);
+  REQUIRE(changed([](SvgfParams& p) { p.phi_color = 5.f; }) > 0);
+  REQUIRE(changed([](SvgfParams& p) { p.phi_normal = 64.f; }) > 0);
+  REQUIRE(changed([](SvgfParams& p) { p.phi_depth = 0.5f; }) > 0);
+  REQUIRE(changed([](SvgfParams& p) { p.alpha = 0.3f; }) > 0);  // above 1 / length by frame 4
+  REQUIRE(changed([](SvgfParams& p) { p.moments_alpha = 0.1f; }) > 0);
+  REQUIRE(changed([](SvgfParams& p) { p.spatial_variance_history = 2; }) > 0);
+  REQUIRE(changed([](SvgfParams& p) { p.albedo_epsilon = 0.3f; }) > 0);
+}
+
+TEST_CASE("pipeline: phi_depth 0 means no depth term, in the a-trous and the variance stages",
+          "[pipeline]") {
+  // Falcor's convention: a zero depth tolerance switches the depth term off (it does not
+  // reject every tap with a depth difference). So phi_depth = 0 must give the bits of a depth
+  // tolerance so large that every depth term is 0 (phi_depth = Inf), and differ from 0.01.
+  test::SyntheticScene scene;
+  auto run = [&](float phi_depth) {
+    DenoiserConfig c = cpu_config(2);
+    c.svgf.phi_depth = phi_depth;
+    c.svgf.spatial_variance_phi_depth = phi_depth;
+    auto d = make_denoiser(c);
+    return denoise_sequence(*d, scene, 5);
+  };
+  const auto zero = run(0.f), inf = run(std::numeric_limits<float>::infinity()), tiny = run(0.01f);
+  size_t differing = 0;
+  for (int k = 0; k < 5; ++k) {
+    test::require_identical(zero[k], inf[k], "phi_depth 0 vs Inf, frame " + std::to_string(k));
+    for (size_t i = 0; i < zero[k].data().size(); ++i)
+      differing += zero[k].data()[i] != tiny[k].data()[i];
+  }
+  REQUIRE(differing > 0);
+}

@@ -1,3 +1,6 @@
+#include <algorithm>
+#include <cmath>
+
 #include <catch2/catch.hpp>
 
 #include "methods/svgf/reproject.h"
@@ -172,4 +175,42 @@ TEST_CASE("reproject: half-pixel motion blends the two bilinear taps", "[reproje
   REQUIRE(rig.accumulated.at(4, 0, 0) == 3.5f + (100.f - 3.5f) * 0.5f);
   // Pixel 0 has only one tap inside (x=0, weight 0.5): renormalized to that tap's value.
   REQUIRE(rig.accumulated.at(0, 0, 0) == 0.f + (100.f - 0.f) * 0.5f);
+}
+
+TEST_CASE("reproject: color and moments follow their own alpha, capped history, in double",
+          "[reproject]") {
+  // A static sequence long enough for the history cap and both alpha floors to apply, with a
+  // different illumination every frame. The reference is the paper's exponential moving
+  // average in double: a = max(alpha, 1 / length) for the color, max(moments_alpha, 1 / length)
+  // for the moments, length capped at history_cap. Swapping the two alphas, ignoring the cap or
+  // the floor changes the result far beyond float rounding.
+  struct Set {
+    float alpha, moments_alpha;
+    int cap;
+  };
+  for (const Set s : {Set{0.05f, 0.2f, 32}, Set{0.2f, 0.05f, 32}, Set{0.05f, 0.2f, 8}}) {
+    ReprojectRig rig(6, 4);
+    rig.params.alpha = s.alpha;
+    rig.params.moments_alpha = s.moments_alpha;
+    rig.params.history_cap = s.cap;
+    double color = 0, m1 = 0, m2 = 0, length = 0;
+    for (int k = 0; k < 48; ++k) {
+      const float v = 0.5f + 0.45f * std::sin(0.7f * static_cast<float>(k));  // gray illumination
+      for (int c = 0; c < 3; ++c) std::fill_n(rig.illum.plane(c), 6 * 4, v);
+      rig.step();
+      const double l = v;  // gray: luminance weights sum to 1 (within rounding)
+      length = std::min(length + 1.0, double(s.cap));
+      const double a = std::max(double(s.alpha), 1.0 / length);
+      const double am = std::max(double(s.moments_alpha), 1.0 / length);
+      color = k == 0 ? l : color + (l - color) * a;
+      m1 = k == 0 ? l : m1 + (l - m1) * am;
+      m2 = k == 0 ? l * l : m2 + (l * l - m2) * am;
+    }
+    INFO("alpha " << s.alpha << ", moments_alpha " << s.moments_alpha << ", cap " << s.cap);
+    REQUIRE(rig.history.at(3, 2, 0) == static_cast<float>(s.cap));
+    REQUIRE(rig.accumulated.at(3, 2, 1) == Approx(color).epsilon(1e-5));
+    REQUIRE(rig.moments.at(3, 2, 0) == Approx(m1).epsilon(1e-5));
+    REQUIRE(rig.moments.at(3, 2, 1) == Approx(m2).epsilon(1e-5));
+    REQUIRE(rig.accumulated.at(3, 2, 3) == Approx(std::max(0.0, m2 - m1 * m1)).margin(1e-6));
+  }
 }

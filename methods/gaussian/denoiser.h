@@ -43,6 +43,7 @@ class GaussianDenoiser final : public Denoiser {
   GaussianDenoiser(const GaussianParams& params, const EngineConfig& config)
       : params_(params), mode_(config.mode), backend_(config) {
     params_.validate();
+    backend_.set_method_planes(3 + 3);
   }
 
   void denoise(const Frame& in, Image& out) override {

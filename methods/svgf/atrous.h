@@ -85,7 +85,7 @@ struct AtrousIteration {
         atrous_inv_phi_luminance<Arith>(params, prefiltered_variance<Arith>(guides, in, x, y));
     const float inv_phi_z = inv_depth_tolerance<Arith>(
         params.phi_depth, guides.depth_fwidth(i), params.depth_gradient_floor);
-    const EdgeSample c{gc.depth, gc.normal, luminance(center.color)};
+    const EdgeSample c{gc.depth, gc.normal, Arith::dot(rec709_weights(), center.color)};
     const Power normal_power = Power::of(params.phi_normal);
 
     // The centre enters with its kernel weight and no edge-stopping term, so the sum is never 0.
@@ -94,9 +94,11 @@ struct AtrousIteration {
     s.weight = center_k;
     s.color = center.color * center_k;
     s.variance = center.variance * (center_k * center_k);
-    // Pixels whose whole footprint is inside skip the 24 bounds tests (same sums, same order).
+    // Pixels whose whole footprint is inside may skip the 24 bounds tests (same sums, same
+    // order), where the flavor asks for it.
     const int reach = 2 * step;
-    if (x >= reach && y >= reach && x < guides.width - reach && y < guides.height - reach)
+    if (Flavor::kSplitInterior && x >= reach && y >= reach && x < guides.width - reach &&
+        y < guides.height - reach)
       taps<false>(x, y, c, inv_phi_z, inv_phi_l, normal_power, s);
     else
       taps<true>(x, y, c, inv_phi_z, inv_phi_l, normal_power, s);
@@ -130,7 +132,7 @@ struct AtrousIteration {
         const int j = guides.index(xq, yq);
         const ColorVar q = in.load(j);
         const DepthNormal gq = guides.depth_normal(j);
-        const EdgeSample sq{gq.depth, gq.normal, luminance(q.color)};
+        const EdgeSample sq{gq.depth, gq.normal, Arith::dot(rec709_weights(), q.color)};
         const float k = b3_weight(dx < 0 ? -dx : dx) * b3_weight(dy < 0 ? -dy : dy);
         const float w =
             edge_stopping_weight<Arith>(c, sq, Arith::tap_depth_scale(inv_phi_z, dx, dy, step),

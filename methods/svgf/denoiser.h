@@ -20,7 +20,9 @@ template <class Backend>
 class SvgfDenoiser final : public Denoiser {
  public:
   SvgfDenoiser(const SvgfParams& params, const EngineConfig& config)
-      : params_(params), mode_(config.mode), backend_(config) {}
+      : params_(params), mode_(config.mode), backend_(config) {
+    backend_.set_method_planes(2 * (3 + 2 + 1 + 4) + 3 + 4 + (mode_ == Mode::Fast ? 4 : 0));
+  }
 
   void denoise(const Frame& in, Image& out) override {
     check_frame_consistent(in);

@@ -54,7 +54,7 @@ struct NormalPowerFixed {
 // first argument's NaN), so a NaN normal zeroes the weight below.
 template <class Arith>
 SVGF_HD float normal_cosine(Vec3 a, Vec3 b) {
-  return min_f(1.f, max_f(0.f, Arith::dot(a, b)));
+  return Arith::min(1.f, Arith::max(0.f, Arith::dot(a, b)));
 }
 
 // inv_phi_z and inv_phi_l are the reciprocals of the depth and luminance tolerances for this
@@ -67,11 +67,12 @@ template <class Arith = ExactArith, class Power>
 SVGF_HD float edge_stopping_weight(const EdgeSample& c, const EdgeSample& q, float inv_phi_z,
                                    const Power& normal_power, float inv_phi_l) {
   const float w_normal = normal_power(normal_cosine<Arith>(c.normal, q.normal));
-  const float e_depth = abs_f(c.depth - q.depth) * inv_phi_z;
-  const float e_lum = abs_f(c.luminance - q.luminance) * inv_phi_l;
+  const float e_depth = Arith::abs(c.depth - q.depth) * inv_phi_z;
+  const float e_lum = Arith::abs(c.luminance - q.luminance) * inv_phi_l;
   // The argument is <= 0 (or -0): both terms are clamped to >= 0 first.
-  const float w =
-      Arith::exp_nonpositive((0.f - max_f(e_lum, 0.f)) - max_f(e_depth, 0.f)) * w_normal;
+  const float w = Arith::exp_nonpositive((0.f - Arith::max(e_lum, 0.f)) -
+                                         Arith::max(e_depth, 0.f)) *
+                  w_normal;
   return w > 0.f ? w : 0.f;
 }
 

@@ -16,11 +16,17 @@ struct SvgfExact {
   using ConstSignal = ConstIllumVarView;
   // Every stage is its own pass (so each can be timed, read back and compared alone).
   static constexpr bool kFused = false;
+  // The a-trous taps as one loop with bounds tests (a second, test-free copy for interior
+  // pixels made the exact kernel larger and slower on the H100).
+  static constexpr bool kSplitInterior = false;
   static const char* name() { return "exact"; }
-  // The normal weight's power: the run-time form (the same bits as the compile-time one).
+  // The normal weight's power: the default 128 = 2^7 as seven squarings known at compile time,
+  // any other exponent in its run-time form (the same bits either way: NormalPower).
   template <class Body>
   static void with_normal_power(float phi_normal, const Body& body) {
-    body(NormalPower<Arith>::of(phi_normal));
+    const NormalPower<Arith> p = NormalPower<Arith>::of(phi_normal);
+    if (p.squarings == 7) body(NormalPowerFixed<7>());
+    else body(p);
   }
 };
 
@@ -33,6 +39,8 @@ struct SvgfFast {
   // Demodulate + reproject + guide packing in one launch; the feedback copy and the
   // remodulation ride on the a-trous iterations that produce them.
   static constexpr bool kFused = true;
+  // Interior pixels (5x5 footprint inside the image) skip the 24 bounds tests.
+  static constexpr bool kSplitInterior = true;
   static const char* name() { return "fast"; }
   // The default 128 = 2^7 as seven squarings known at compile time.
   template <class Body>
