@@ -24,6 +24,8 @@ struct ExactArith {
   SVGF_HD static float max(float a, float b) { return max_f(a, b); }
   SVGF_HD static float min(float a, float b) { return min_f(a, b); }
   SVGF_HD static float abs(float a) { return abs_f(a); }
+  // Clamped to [0, 1]; NaN stays NaN (it zeroes the weight it enters).
+  SVGF_HD static float saturate(float a) { return min_f(1.f, max_f(0.f, a)); }
   SVGF_HD static float exp_nonpositive(float x) { return det_exp_nonpositive(x); }
   SVGF_HD static float pow(float x, float y) { return det_pow(x, y); }
   SVGF_HD static float dot(Vec3 a, Vec3 b) { return svgf::dot(a, b); }
@@ -42,6 +44,8 @@ struct ExactArith {
     SVGF_HD Vec2 operator()(Vec2 v) const { return v / d; }
   };
   SVGF_HD static Divider divide_by(float d) { return Divider{d}; }
+  // w where w > 0, else 0 (NaN too).
+  SVGF_HD static float positive_part(float w) { return w > 0.f ? w : 0.f; }
   // inv_phi_z scaled by 1 / distance in pixels of the tap (dx, dy) * step; at the centre the
   // distance is 0 and the scale Inf (see edge_stopping_weight for why that drops the term).
   SVGF_HD static float tap_depth_scale(float inv_phi_z, int dx, int dy, int step) {
@@ -49,22 +53,22 @@ struct ExactArith {
     const float fy = static_cast<float>(dy * step);
     return inv_phi_z * (1.f / sqrtf(fx * fx + fy * fy));
   }
+  // The same, called from a fully unrolled 5x5 tap loop (dx, dy known at compile time).
+  SVGF_HD static float tap_depth_scale_unrolled(float inv_phi_z, int dx, int dy, int step) {
+    return tap_depth_scale(inv_phi_z, dx, dy, step);
+  }
 };
 
-// 1 / sqrt(dx^2 + dy^2) for the taps of the 5x5 and 7x7 footprints as constants (the unrolled
-// tap loops fold them); rsqrtf for anything wider. Inf at the centre, as in exact mode.
+// 1 / sqrt(dx^2 + dy^2) for the taps of a 5x5 footprint as constants (an unrolled tap loop
+// folds them); -1 at the centre and outside the footprint.
 SVGF_HD constexpr float inv_distance_small(int dx, int dy) {
   const int d2 = dx * dx + dy * dy;
-  return d2 == 1    ? 1.f
-         : d2 == 2  ? 0.70710678f
-         : d2 == 4  ? 0.5f
-         : d2 == 5  ? 0.44721360f
-         : d2 == 8  ? 0.35355339f
-         : d2 == 9  ? 0.33333333f
-         : d2 == 10 ? 0.31622777f
-         : d2 == 13 ? 0.27735010f
-         : d2 == 18 ? 0.23570226f
-                    : -1.f;
+  return d2 == 1   ? 1.f
+         : d2 == 2 ? 0.70710678f
+         : d2 == 4 ? 0.5f
+         : d2 == 5 ? 0.44721360f
+         : d2 == 8 ? 0.35355339f
+                   : -1.f;
 }
 
 #if defined(__CUDACC__)
@@ -76,6 +80,9 @@ struct FastArith {
   __device__ __forceinline__ static float max(float a, float b) { return fmaxf(a, b); }
   __device__ __forceinline__ static float min(float a, float b) { return fminf(a, b); }
   __device__ __forceinline__ static float abs(float a) { return fabsf(a); }
+  // Clamped to [0, 1] by the .SAT modifier of the instruction that computes `a` (free); NaN
+  // gives 0.
+  __device__ __forceinline__ static float saturate(float a) { return __saturatef(a); }
   __device__ __forceinline__ static float exp_nonpositive(float x) { return __expf(x); }
   __device__ __forceinline__ static float pow(float x, float y) {
     return x > 0.f ? __powf(x, y) : (y > 0.f ? 0.f : 1.f);
@@ -106,12 +113,21 @@ struct FastArith {
   __device__ __forceinline__ static Divider divide_by(float d) {
     return Divider{__fdividef(1.f, d)};
   }
+  // The weight's last select is not needed: the exponent's terms went through fmaxf (no NaN)
+  // and both factors lie in [0, 1], so the product is a number >= 0.
+  __device__ __forceinline__ static float positive_part(float w) { return w; }
+  // Any tap: one rsqrt (the centre gives Inf, as in exact mode).
   __device__ __forceinline__ static float tap_depth_scale(float inv_phi_z, int dx, int dy,
                                                           int step) {
+    return (inv_phi_z * __fdividef(1.f, static_cast<float>(step))) *
+           rsqrtf(static_cast<float>(dx * dx + dy * dy));
+  }
+  // In an unrolled 5x5 loop the distance is a constant; inv_phi_z / step is the same for every
+  // tap of a pixel and is hoisted: one multiply per tap.
+  __device__ __forceinline__ static float tap_depth_scale_unrolled(float inv_phi_z, int dx,
+                                                                   int dy, int step) {
     const float c = inv_distance_small(dx, dy);
-    const float inv_dist =
-        c >= 0.f ? c : rsqrtf(static_cast<float>(dx * dx + dy * dy));  // centre: Inf
-    // inv_phi_z / step is the same for every tap of a pixel: hoisted out of the tap loop.
+    const float inv_dist = c >= 0.f ? c : __int_as_float(0x7f800000);  // centre: Inf
     return (inv_phi_z * __fdividef(1.f, static_cast<float>(step))) * inv_dist;
   }
 };

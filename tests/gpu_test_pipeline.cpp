@@ -150,6 +150,110 @@ TEST_CASE("pipeline: CPU vs CUDA exact bitwise over whole sequences; fast within
   }
 }
 
+TEST_CASE("parameter sweep: CPU vs CUDA exact bitwise, fast within tolerance, every setting",
+          "[pipeline][sweep]") {
+  // Fast mode runs the exact mode's functors with other arithmetic and storage, and its own
+  // fusion choices (which iteration feeds back, which remodulates): every iteration count
+  // 0-6 with every feedback tap -1..iterations, and edge-stopping parameters at 0 and large.
+  test::SyntheticScene scene;
+  scene.width = 61;
+  scene.height = 37;
+  scene.square = 12;
+  const int frames = options().reduced ? 3 : 5;
+  std::vector<std::pair<std::string, SvgfParams>> settings;
+  for (int it = 0; it <= 6; ++it)
+    for (int tap = -1; tap <= it; ++tap) {
+      SvgfParams p;
+      p.iterations = it;
+      p.feedback_tap = tap;
+      settings.emplace_back("iterations " + std::to_string(it) + " tap " + std::to_string(tap), p);
+    }
+  auto with = [&](const std::string& name, auto change) {
+    SvgfParams p;
+    change(p);
+    settings.emplace_back(name, p);
+  };
+  with("phi_depth 0", [](SvgfParams& p) { p.phi_depth = 0.f; p.spatial_variance_phi_depth = 0.f; });
+  with("phi_depth 1e6", [](SvgfParams& p) { p.phi_depth = 1e6f; });
+  with("phi_normal 0", [](SvgfParams& p) { p.phi_normal = 0.f; });
+  with("phi_normal 1024", [](SvgfParams& p) { p.phi_normal = 1024.f; });
+  with("phi_normal 100 (not 2^m)", [](SvgfParams& p) { p.phi_normal = 100.f; });
+  with("phi_color 1e6", [](SvgfParams& p) { p.phi_color = 1e6f; });
+  with("phi_color 0.5", [](SvgfParams& p) { p.phi_color = 0.5f; });
+  for (const auto& [name, p] : settings) {
+    DenoiserConfig c = config(Backend::Cpu);
+    c.svgf = p;
+    auto cpu = make_denoiser(c);
+    c.backend = Backend::Cuda;
+    auto exact = make_denoiser(c);
+    c.mode = Mode::Fast;
+    auto fast = make_denoiser(c);
+    for (int k = 0; k < frames; ++k) {
+      const Frame f = scene.frame(k);
+      Image a, b, d;
+      cpu->denoise(f, a);
+      exact->denoise(f, b);
+      fast->denoise(f, d);
+      const std::string where = name + ", frame " + std::to_string(k);
+      test::require_identical(a, b, where + ": output (CPU vs CUDA exact)");
+      test::require_identical(cpu->read_buffer(svgf_buffer::kColorHistory),
+                              exact->read_buffer(svgf_buffer::kColorHistory),
+                              where + ": color history (CPU vs CUDA exact)");
+      const double rel = metrics::relmse(d, b);
+      const double rel_history = metrics::relmse(fast->read_buffer(svgf_buffer::kColorHistory),
+                                                 exact->read_buffer(svgf_buffer::kColorHistory));
+      INFO(where << ": fast vs exact relMSE " << rel << ", color history " << rel_history);
+      for (float v : d.data()) REQUIRE(std::isfinite(v));
+      REQUIRE(rel <= kFastMaxRelMse);
+      REQUIRE(rel_history <= kFastMaxRelMse);
+      tally().fast_frames += 1;
+      tally().frames += 1;
+      count_values(a);
+    }
+  }
+}
+
+TEST_CASE("gaussian: CPU vs CUDA exact bitwise, fast within tolerance, every source",
+          "[pipeline][gaussian]") {
+  // The second method through the same backends: the CPU and CUDA exact give the same bits on
+  // every frame (debug buffers included), fast mode stays within the SVGF tolerance.
+  for (const Source& src : sources()) {
+    for (const std::pair<float, int>& setting : {std::pair<float, int>{2.f, 0}, {5.f, 3}}) {
+      const float sigma = setting.first;
+      const int radius = setting.second;
+      auto with = [&](Backend b, Mode m) {
+        DenoiserConfig c = config(b, m, 13, 7);
+        c.method = Method::Gaussian;
+        c.gaussian.sigma = sigma;
+        c.gaussian.radius = radius;
+        return make_denoiser(c);
+      };
+      auto cpu = with(Backend::Cpu, Mode::Exact);
+      auto exact = with(Backend::Cuda, Mode::Exact);
+      auto fast = with(Backend::Cuda, Mode::Fast);
+      for (int k = 0; k < std::min(src.frames, 3); ++k) {
+        const Frame f = src.frame(k);
+        const std::string where = src.name + ", frame " + std::to_string(k) + ", sigma " +
+                                  std::to_string(sigma);
+        Image a, b, c;
+        cpu->denoise(f, a);
+        exact->denoise(f, b);
+        fast->denoise(f, c);
+        test::require_identical(a, b, where + ": gaussian output (CPU vs CUDA exact)");
+        for (const std::string& name : cpu->debug_buffers())
+          test::require_identical(cpu->read_buffer(name), exact->read_buffer(name),
+                                  where + ": gaussian " + name);
+        INFO(where);
+        REQUIRE(cpu->last_report().replaced_samples == exact->last_report().replaced_samples);
+        REQUIRE(fast->last_report().replaced_samples == exact->last_report().replaced_samples);
+        for (float v : c.data()) REQUIRE(std::isfinite(v));
+        REQUIRE(metrics::relmse(c, b) <= kFastMaxRelMse);
+        count_values(a);
+      }
+    }
+  }
+}
+
 TEST_CASE("determinism: two runs and three block shapes give the same bits, exact and fast",
           "[determinism]") {
   std::vector<Source> all = sources();

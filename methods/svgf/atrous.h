@@ -134,10 +134,9 @@ struct AtrousIteration {
         const DepthNormal gq = guides.depth_normal(j);
         const EdgeSample sq{gq.depth, gq.normal, Arith::dot(rec709_weights(), q.color)};
         const float k = b3_weight(dx < 0 ? -dx : dx) * b3_weight(dy < 0 ? -dy : dy);
+        const float depth_scale = Arith::tap_depth_scale_unrolled(inv_phi_z, dx, dy, step);
         const float w =
-            edge_stopping_weight<Arith>(c, sq, Arith::tap_depth_scale(inv_phi_z, dx, dy, step),
-                                        normal_power, inv_phi_l) *
-            k;
+            edge_stopping_weight<Arith>(c, sq, depth_scale, normal_power, inv_phi_l) * k;
         s.weight = s.weight + w;
         s.color = Arith::mad(q.color, w, s.color);
         s.variance = Arith::mad(q.variance, w * w, s.variance);

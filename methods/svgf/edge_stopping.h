@@ -50,11 +50,11 @@ struct NormalPowerFixed {
 
 // The normal term's base: n_p . n_q clamped to [0, 1] (Falcor's saturate). Unit normals give
 // at most 1, but normals stored as half floats reach |n|^2 = 1.0003, and uncapped, a same-face
-// neighbour would weigh up to 1.04 times the centre. NaN stays NaN (min_f/max_f keep their
-// first argument's NaN), so a NaN normal zeroes the weight below.
+// neighbour would weigh up to 1.04 times the centre. A NaN normal zeroes the weight: exact mode
+// keeps the NaN (min_f/max_f) for the final select, fast mode's saturate makes it 0.
 template <class Arith>
 SVGF_HD float normal_cosine(Vec3 a, Vec3 b) {
-  return Arith::min(1.f, Arith::max(0.f, Arith::dot(a, b)));
+  return Arith::saturate(Arith::dot(a, b));
 }
 
 // inv_phi_z and inv_phi_l are the reciprocals of the depth and luminance tolerances for this
@@ -73,7 +73,7 @@ SVGF_HD float edge_stopping_weight(const EdgeSample& c, const EdgeSample& q, flo
   const float w = Arith::exp_nonpositive((0.f - Arith::max(e_lum, 0.f)) -
                                          Arith::max(e_depth, 0.f)) *
                   w_normal;
-  return w > 0.f ? w : 0.f;
+  return Arith::positive_part(w);
 }
 
 SVGF_HD float edge_stopping_weight(const EdgeSample& c, const EdgeSample& q, float inv_phi_z,
