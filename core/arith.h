@@ -27,6 +27,8 @@ struct ExactArith {
   // Clamped to [0, 1]; NaN stays NaN (it zeroes the weight it enters).
   SVGF_HD static float saturate(float a) { return min_f(1.f, max_f(0.f, a)); }
   SVGF_HD static float exp_nonpositive(float x) { return det_exp_nonpositive(x); }
+  // exp(-(a + b)) for a, b >= 0, evaluated as exp((0 - a) - b).
+  SVGF_HD static float exp_neg_sum(float a, float b) { return det_exp_nonpositive((0.f - a) - b); }
   SVGF_HD static float pow(float x, float y) { return det_pow(x, y); }
   SVGF_HD static float dot(Vec3 a, Vec3 b) { return svgf::dot(a, b); }
   // c + a * b, rounded twice (no FMA).
@@ -53,9 +55,11 @@ struct ExactArith {
     const float fy = static_cast<float>(dy * step);
     return inv_phi_z * (1.f / sqrtf(fx * fx + fy * fy));
   }
-  // The same, called from a fully unrolled 5x5 tap loop (dx, dy known at compile time).
-  SVGF_HD static float tap_depth_scale_unrolled(float inv_phi_z, int dx, int dy, int step) {
-    return tap_depth_scale(inv_phi_z, dx, dy, step);
+  // The same in a fully unrolled 5x5 tap loop (dx, dy known at compile time), in two parts:
+  // once per pixel, then per tap. Exact mode keeps the one expression above.
+  SVGF_HD static float pixel_depth_scale(float inv_phi_z, int) { return inv_phi_z; }
+  SVGF_HD static float tap_depth_scale_unrolled(float pixel_scale, int dx, int dy, int step) {
+    return tap_depth_scale(pixel_scale, dx, dy, step);
   }
 };
 
@@ -83,7 +87,19 @@ struct FastArith {
   // Clamped to [0, 1] by the .SAT modifier of the instruction that computes `a` (free); NaN
   // gives 0.
   __device__ __forceinline__ static float saturate(float a) { return __saturatef(a); }
-  __device__ __forceinline__ static float exp_nonpositive(float x) { return __expf(x); }
+  // 2^(x log2 e) on the special-function unit, subnormal results flushed to 0 (.ftz: without
+  // it the compiler adds range fix-ups around every exp; the weights lose nothing they use).
+  __device__ __forceinline__ static float exp2_ftz(float x) {
+    float r;
+    asm("ex2.approx.ftz.f32 %0, %1;" : "=f"(r) : "f"(x));
+    return r;
+  }
+  __device__ __forceinline__ static float exp_nonpositive(float x) {
+    return exp2_ftz(x * 1.44269504f);
+  }
+  __device__ __forceinline__ static float exp_neg_sum(float a, float b) {
+    return exp2_ftz((a + b) * -1.44269504f);
+  }
   __device__ __forceinline__ static float pow(float x, float y) {
     return x > 0.f ? __powf(x, y) : (y > 0.f ? 0.f : 1.f);
   }
@@ -122,13 +138,15 @@ struct FastArith {
     return (inv_phi_z * __fdividef(1.f, static_cast<float>(step))) *
            rsqrtf(static_cast<float>(dx * dx + dy * dy));
   }
-  // In an unrolled 5x5 loop the distance is a constant; inv_phi_z / step is the same for every
-  // tap of a pixel and is hoisted: one multiply per tap.
-  __device__ __forceinline__ static float tap_depth_scale_unrolled(float inv_phi_z, int dx,
-                                                                   int dy, int step) {
+  // In an unrolled 5x5 loop: inv_phi_z / step once per pixel, then one multiply by a constant
+  // per tap.
+  __device__ __forceinline__ static float pixel_depth_scale(float inv_phi_z, int step) {
+    return inv_phi_z * __fdividef(1.f, static_cast<float>(step));
+  }
+  __device__ __forceinline__ static float tap_depth_scale_unrolled(float pixel_scale, int dx,
+                                                                   int dy, int) {
     const float c = inv_distance_small(dx, dy);
-    const float inv_dist = c >= 0.f ? c : __int_as_float(0x7f800000);  // centre: Inf
-    return (inv_phi_z * __fdividef(1.f, static_cast<float>(step))) * inv_dist;
+    return pixel_scale * (c >= 0.f ? c : __int_as_float(0x7f800000));  // centre: Inf
   }
 };
 #endif

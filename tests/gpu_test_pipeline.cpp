@@ -206,6 +206,10 @@ TEST_CASE("parameter sweep: CPU vs CUDA exact bitwise, fast within tolerance, ev
       for (float v : d.data()) REQUIRE(std::isfinite(v));
       REQUIRE(rel <= kFastMaxRelMse);
       REQUIRE(rel_history <= kFastMaxRelMse);
+      if (rel >= tally().fast_worst_relmse) {
+        tally().fast_worst_relmse = rel;
+        tally().fast_worst_relmse_at = "sweep " + where;
+      }
       tally().fast_frames += 1;
       tally().frames += 1;
       count_values(a);

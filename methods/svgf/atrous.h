@@ -15,8 +15,9 @@ namespace svgf {
 SVGF_HD float variance_of(const float* variance, int j) { return variance[j]; }
 template <class T>
 SVGF_HD float variance_of(const IllumVar<T>& s, int j) { return s.variance[j]; }
+// Packed: only the variance's 4 bytes are loaded, not the pixel's 16.
 template <class T>
-SVGF_HD float variance_of(const PackedIllumVar<T>& s, int j) { return s.load(j).variance; }
+SVGF_HD float variance_of(const PackedIllumVar<T>& s, int j) { return s.data[j].w; }
 
 // 3x3 Gaussian of the variance around an interior pixel i (all taps inside). The weights are
 // exact binary fractions summing to exactly 1, but the division is kept so the result has the
@@ -97,11 +98,12 @@ struct AtrousIteration {
     // Pixels whose whole footprint is inside may skip the 24 bounds tests (same sums, same
     // order), where the flavor asks for it.
     const int reach = 2 * step;
+    const float depth_scale = Arith::pixel_depth_scale(inv_phi_z, step);
     if (Flavor::kSplitInterior && x >= reach && y >= reach && x < guides.width - reach &&
         y < guides.height - reach)
-      taps<false>(x, y, c, inv_phi_z, inv_phi_l, normal_power, s);
+      taps<false>(x, y, c, depth_scale, inv_phi_l, normal_power, s);
     else
-      taps<true>(x, y, c, inv_phi_z, inv_phi_l, normal_power, s);
+      taps<true>(x, y, c, depth_scale, inv_phi_l, normal_power, s);
     const auto by_weight = Arith::divide_by(s.weight);
     out.store(i, make_color_var(by_weight(s.color),
                                 Arith::divide_by(s.weight * s.weight)(s.variance)));
@@ -114,8 +116,9 @@ struct AtrousIteration {
     float variance;
   };
 
+  // depth_scale: Arith::pixel_depth_scale of the pixel's 1 / phi_z.
   template <bool kCheck>
-  SVGF_HD void taps(int x, int y, const EdgeSample& c, float inv_phi_z, float inv_phi_l,
+  SVGF_HD void taps(int x, int y, const EdgeSample& c, float depth_scale, float inv_phi_l,
                     const Power& normal_power, Sums& s) const {
 #if defined(__CUDA_ARCH__)
 #pragma unroll
@@ -134,9 +137,9 @@ struct AtrousIteration {
         const DepthNormal gq = guides.depth_normal(j);
         const EdgeSample sq{gq.depth, gq.normal, Arith::dot(rec709_weights(), q.color)};
         const float k = b3_weight(dx < 0 ? -dx : dx) * b3_weight(dy < 0 ? -dy : dy);
-        const float depth_scale = Arith::tap_depth_scale_unrolled(inv_phi_z, dx, dy, step);
+        const float tap_scale = Arith::tap_depth_scale_unrolled(depth_scale, dx, dy, step);
         const float w =
-            edge_stopping_weight<Arith>(c, sq, depth_scale, normal_power, inv_phi_l) * k;
+            edge_stopping_weight<Arith>(c, sq, tap_scale, normal_power, inv_phi_l) * k;
         s.weight = s.weight + w;
         s.color = Arith::mad(q.color, w, s.color);
         s.variance = Arith::mad(q.variance, w * w, s.variance);

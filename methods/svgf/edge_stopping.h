@@ -70,9 +70,7 @@ SVGF_HD float edge_stopping_weight(const EdgeSample& c, const EdgeSample& q, flo
   const float e_depth = Arith::abs(c.depth - q.depth) * inv_phi_z;
   const float e_lum = Arith::abs(c.luminance - q.luminance) * inv_phi_l;
   // The argument is <= 0 (or -0): both terms are clamped to >= 0 first.
-  const float w = Arith::exp_nonpositive((0.f - Arith::max(e_lum, 0.f)) -
-                                         Arith::max(e_depth, 0.f)) *
-                  w_normal;
+  const float w = Arith::exp_neg_sum(Arith::max(e_lum, 0.f), Arith::max(e_depth, 0.f)) * w_normal;
   return Arith::positive_part(w);
 }
 
