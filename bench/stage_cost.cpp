@@ -1,5 +1,7 @@
-// Bytes and operations per pixel of every stage, read off the kernels in core/ (exact mode, both
-// backends) and kernels_cuda/svgf_fast.cu (fast mode). Conventions (docs/benchmarks.md):
+// Bytes and operations per pixel of every SVGF stage, read off the functors in methods/svgf/:
+// exact mode (both backends) and the SvgfFast flavor (fast mode, methods/svgf/flavors.h), counted
+// by hand (not yet derived from the kernels or checked against them). Conventions
+// (docs/benchmarks.md):
 //  - bytes: every plane the kernel reads, once, plus every plane it writes, once; 4 bytes a
 //    value. Neighbour taps are assumed served by the caches (that is the floor, not a model);
 //  - the steady state: a surface pixel whose history is at least spatial_variance_history frames
@@ -47,7 +49,7 @@ constexpr double kRemodulate = 6;
 // With emission planes, demodulate's subtraction and clamp: 3 + 3.
 constexpr double kEmission = 6;
 
-// --- fast mode (svgf_fast.cu) -------------------------------------------------------------
+// --- fast mode (SvgfFast) -----------------------------------------------------------------
 // One tap: luminance 3 and normal dot 3 (mul + 2 FMA each), max 1, seven squarings 7, depth and
 // luminance terms 3 + 3, their sum 1, __expf 2 (scale + ex2), times normal weight 1, select 1,
 // times B3 weight 1, inv_phi_z * inv_dist 1, accumulation (weight 1, color 3 FMA, w*w and FMA 2) 6.
@@ -180,7 +182,7 @@ StageCost pixel_cost(Mode mode, Stage stage, const SvgfParams& p, bool emission,
 
 StageCost stage_cost(Mode mode, Stage stage, const SvgfParams& p, bool emission,
                      double surface_fraction) {
-  if (stage == Stage::Upload) {  // kernels_cuda/svgf_cuda.cpp: the input planes in one copy
+  if (stage == Stage::Upload) {  // kernels_cuda/cuda_backend.h: the input planes in one copy
     StageCost c;
     c.read = (15 + (emission ? 3 : 0)) * kFloat;
     c.planes =

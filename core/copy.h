@@ -5,16 +5,6 @@
 
 namespace svgf {
 
-struct CopyRgbKernel {
-  int width = 0;
-  ConstRgbView src;
-  RgbView dst;
-  SVGF_HD void operator()(int x, int y) const {
-    const int i = y * width + x;
-    dst.store(i, src.load(i));
-  }
-};
-
 // Each pixel of `src` (anything with load(i)) into `sink` (anything with store(i, value)): a
 // copy between storage layouts, or into a sink that computes on the way (a remodulation).
 template <class Src, class Sink>
@@ -27,6 +17,9 @@ struct ForwardKernel {
     sink.store(i, src.load(i));
   }
 };
+
+// A plane-by-plane copy of three planes: CopyRgbKernel{width, src, dst}.
+using CopyRgbKernel = ForwardKernel<ConstRgbView, RgbView>;
 
 // Depth and normal of the guides packed as one Packed4 per pixel (PackedGuides' storage).
 struct PackGuidesKernel {

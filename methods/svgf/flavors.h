@@ -9,6 +9,16 @@
 
 namespace svgf {
 
+// Runs body(power) with the normal weight's power: the default 128 = 2^7 as seven squarings
+// known at compile time, any other exponent in its run-time form (the same bits either way:
+// NormalPower).
+template <class Arith, class Body>
+void with_normal_power_of(float phi_normal, const Body& body) {
+  const NormalPower<Arith> p = NormalPower<Arith>::of(phi_normal);
+  if (p.squarings == 7) body(NormalPowerFixed<7>());
+  else body(p);
+}
+
 struct SvgfExact {
   using Arith = ExactArith;
   using Guides = GuideView;             // separate depth and normal planes
@@ -20,13 +30,9 @@ struct SvgfExact {
   // pixels made the exact kernel larger and slower on the H100).
   static constexpr bool kSplitInterior = false;
   static const char* name() { return "exact"; }
-  // The normal weight's power: the default 128 = 2^7 as seven squarings known at compile time,
-  // any other exponent in its run-time form (the same bits either way: NormalPower).
   template <class Body>
   static void with_normal_power(float phi_normal, const Body& body) {
-    const NormalPower<Arith> p = NormalPower<Arith>::of(phi_normal);
-    if (p.squarings == 7) body(NormalPowerFixed<7>());
-    else body(p);
+    with_normal_power_of<Arith>(phi_normal, body);
   }
 };
 
@@ -42,12 +48,9 @@ struct SvgfFast {
   // Interior pixels (5x5 footprint inside the image) skip the 24 bounds tests.
   static constexpr bool kSplitInterior = true;
   static const char* name() { return "fast"; }
-  // The default 128 = 2^7 as seven squarings known at compile time.
   template <class Body>
   static void with_normal_power(float phi_normal, const Body& body) {
-    const NormalPower<Arith> p = NormalPower<Arith>::of(phi_normal);
-    if (p.squarings == 7) body(NormalPowerFixed<7>());
-    else body(p);
+    with_normal_power_of<Arith>(phi_normal, body);
   }
 };
 #endif
