@@ -214,3 +214,89 @@ TEST_CASE("reproject: color and moments follow their own alpha, capped history, 
     REQUIRE(rig.accumulated.at(3, 2, 3) == Approx(std::max(0.0, m2 - m1 * m1)).margin(1e-6));
   }
 }
+
+TEST_CASE("reproject: the depth test's two tolerances and the normal test, at their thresholds",
+          "[reproject]") {
+  // A static 5x5 frame whose previous depth or normal is moved, everywhere (else the 3x3
+  // fallback would find the unmoved neighbours), just inside or just outside the tolerance
+  // |z - z_prev| <= scale * fwidth(z) + relative * z (and n . n_prev >= reproject_normal_cos).
+  // Kept: history length 2; rejected: 1.
+  auto history_after = [](auto change_params, float prev_depth, float prev_nx) {
+    ReprojectRig rig(5, 5);
+    change_params(rig.params);
+    for (int i = 0; i < 25; ++i) rig.cur_frame.depth_gradient.plane(0)[i] = 0.01f;
+    test::fill_uniform(rig.illum, 0.1f, 1.f, 5);
+    rig.prev_frame = rig.cur_frame;
+    rig.step();  // frame 0: history 1 everywhere, prev_frame := cur_frame
+    const float nz = std::sqrt(1.f - prev_nx * prev_nx);
+    for (int i = 0; i < 25; ++i) {
+      rig.prev_frame.depth.plane(0)[i] = prev_depth;
+      rig.prev_frame.normal.plane(0)[i] = prev_nx;
+      rig.prev_frame.normal.plane(2)[i] = nz;
+    }
+    rig.step();
+    return rig.history.at(2, 2, 0);
+  };
+  const auto defaults = [](SvgfParams&) {};
+  // Defaults: tolerance 10 * 0.01 + 0.03 * 2 = 0.16.
+  REQUIRE(history_after(defaults, 2.15f, 0.f) == 2.f);
+  REQUIRE(history_after(defaults, 2.17f, 0.f) == 1.f);
+  // The gradient scale multiplies fwidth: 5 * 0.01 + 0.06 = 0.11.
+  const auto scale5 = [](SvgfParams& p) { p.reproject_depth_gradient_scale = 5.f; };
+  REQUIRE(history_after(scale5, 2.10f, 0.f) == 2.f);
+  REQUIRE(history_after(scale5, 2.12f, 0.f) == 1.f);
+  // The relative term multiplies the depth: 0.1 + 0.1 * 2 = 0.3.
+  const auto relative = [](SvgfParams& p) { p.reproject_depth_relative = 0.1f; };
+  REQUIRE(history_after(relative, 2.29f, 0.f) == 2.f);
+  REQUIRE(history_after(relative, 2.31f, 0.f) == 1.f);
+  // Normals: cos = sqrt(1 - nx^2); 0.3 -> 0.954, 0.45 -> 0.893 (threshold 0.9, then 0.96).
+  REQUIRE(history_after(defaults, 2.f, 0.3f) == 2.f);
+  REQUIRE(history_after(defaults, 2.f, 0.45f) == 1.f);
+  const auto strict = [](SvgfParams& p) { p.reproject_normal_cos = 0.96f; };
+  REQUIRE(history_after(strict, 2.f, 0.3f) == 1.f);
+}
+
+TEST_CASE("reproject: below reproject_min_weight the bilinear taps give way to the 3x3 fallback",
+          "[reproject]") {
+  // Motion (0.7, 0.7): bilinear weights 0.09 (x, y), 0.21, 0.21, 0.49. Only tap (x, y) passes
+  // the depth test, so the kept weight is 0.09: above the default 0.01 the history is that
+  // tap's color; with min_weight 0.1 it is the mean of the consistent pixels of the 3x3 block
+  // around the nearest previous pixel (x + 1, y + 1).
+  auto accumulate = [](float min_weight) {
+    ReprojectRig rig(7, 7);
+    rig.params.reproject_min_weight = min_weight;
+    test::fill_uniform(rig.illum, 0.1f, 1.f, 9);
+    rig.prev_frame = rig.cur_frame;
+    rig.step();  // frame 0: the history is this illumination
+    for (int i = 0; i < 49; ++i) {
+      rig.cur_frame.motion.plane(0)[i] = 0.7f;
+      rig.cur_frame.motion.plane(1)[i] = 0.7f;
+    }
+    rig.prev_frame.depth.at(3, 2, 0) = 5.f;  // taps (x+1, y), (x, y+1), (x+1, y+1) of (2, 2)
+    rig.prev_frame.depth.at(2, 3, 0) = 5.f;
+    rig.prev_frame.depth.at(3, 3, 0) = 5.f;
+    const Image history_color = rig.prev_color;
+    test::fill_uniform(rig.illum, 1.5f, 2.5f, 10);  // a new sample, unlike any history
+    rig.step();
+    return std::make_pair(rig, history_color);
+  };
+  const auto [kept, prev_kept] = accumulate(0.01f);
+  REQUIRE(kept.history.at(2, 2, 0) == 2.f);
+  // alpha = 1/2 at length 2: (history + sample) / 2 with history = the one tap's color.
+  const float h_tap = prev_kept.at(2, 2, 1);
+  const float sample = kept.illum.at(2, 2, 1);
+  REQUIRE(kept.accumulated.at(2, 2, 1) == Approx(h_tap + (sample - h_tap) * 0.5f).epsilon(1e-5));
+
+  const auto [fell_back, prev_fb] = accumulate(0.1f);
+  REQUIRE(fell_back.history.at(2, 2, 0) == 2.f);
+  double mean = 0;
+  int count = 0;
+  for (int y = 2; y <= 4; ++y)
+    for (int x = 2; x <= 4; ++x)
+      if (!((x == 3 && y == 2) || (x == 2 && y == 3) || (x == 3 && y == 3))) {
+        mean += prev_fb.at(x, y, 1);
+        ++count;
+      }
+  mean /= count;
+  REQUIRE(fell_back.accumulated.at(2, 2, 1) == Approx(mean + (sample - mean) * 0.5).epsilon(1e-5));
+}

@@ -1,3 +1,6 @@
+#include <cmath>
+#include <limits>
+
 #include <catch2/catch.hpp>
 
 #include "methods/svgf/variance.h"
@@ -84,5 +87,78 @@ TEST_CASE("variance: the spatial estimate does not bleed across a depth edge", "
     REQUIRE(rig.out.at(9, y, 0) == Approx(0.25f).epsilon(1e-5));
     REQUIRE(rig.out.at(10, y, 0) == Approx(4.f).epsilon(1e-5));
     REQUIRE(rig.out.at(9, y, 3) == Approx(0.f).margin(1e-5));
+  }
+}
+
+TEST_CASE("variance: the radius, the young-history threshold and the depth tolerance's scale",
+          "[variance]") {
+  // Unit luminance and normal weights: each parameter is then seen in a known answer.
+  auto rig_for = [](float history_length) {
+    VarianceRig rig(21, 21, history_length);
+    rig.params.phi_color = std::numeric_limits<float>::infinity();
+    rig.params.phi_normal = 0.f;
+    test::fill_uniform(rig.accumulated, 0.f, 2.f, 31);
+    test::fill_uniform(rig.moments, 0.f, 1.f, 32);
+    for (int i = 0; i < 21 * 21; ++i)
+      rig.moments.plane(1)[i] += rig.moments.plane(0)[i] * rig.moments.plane(0)[i];
+    return rig;
+  };
+  auto mean_variance = [](const VarianceRig& rig, int r, double boost) {
+    double m1 = 0, m2 = 0;
+    const int n = (2 * r + 1) * (2 * r + 1);
+    for (int y = 10 - r; y <= 10 + r; ++y)
+      for (int x = 10 - r; x <= 10 + r; ++x) {
+        m1 += rig.moments.at(x, y, 0);
+        m2 += rig.moments.at(x, y, 1);
+      }
+    m1 /= n;
+    m2 /= n;
+    return (m2 - m1 * m1) * boost;
+  };
+  SECTION("spatial_variance_radius sets the footprint (2r+1)^2") {
+    for (int r : {1, 2, 3}) {
+      VarianceRig rig = rig_for(2.f);
+      rig.params.spatial_variance_radius = r;
+      rig.run();
+      INFO("radius " << r);
+      REQUIRE(rig.out.at(10, 10, 3) == Approx(mean_variance(rig, r, 2.0)).epsilon(1e-4));
+    }
+  }
+  SECTION("spatial_variance_history is the threshold and the boost's numerator") {
+    VarianceRig rig = rig_for(5.f);  // history 5: temporal by default (threshold 4)
+    rig.run();
+    REQUIRE(rig.out.at(10, 10, 3) == rig.accumulated.at(10, 10, 3));
+    rig.params.spatial_variance_history = 8;  // now young: spatial, boosted by 8 / 5
+    rig.run();
+    REQUIRE(rig.out.at(10, 10, 3) == Approx(mean_variance(rig, 3, 8.0 / 5.0)).epsilon(1e-4));
+  }
+  SECTION("spatial_variance_phi_depth scales the depth tolerance") {
+    // A depth ramp of 0.1 a pixel with fwidth 0.1: a tap d pixels away along x has
+    // |dz| / (phi * fwidth * |d|) = 1 / phi, so each weight is exp(-1/phi) off the centre's
+    // column: the weighted mean is a known blend, different for each phi.
+    for (float phi : {0.5f, 3.f}) {
+      VarianceRig rig = rig_for(2.f);
+      rig.params.spatial_variance_phi_depth = phi;
+      for (int y = 0; y < 21; ++y)
+        for (int x = 0; x < 21; ++x) {
+          rig.frame.depth.at(x, y, 0) = 2.f + 0.1f * x;
+          rig.frame.depth_gradient.at(x, y, 0) = 0.1f;
+        }
+      rig.run();
+      // Weight of tap (dx, dy): exp(-|dx| / (phi * sqrt(dx^2 + dy^2))) (1 at the centre).
+      double ws = 0, m1 = 0, m2 = 0;
+      for (int dy = -3; dy <= 3; ++dy)
+        for (int dx = -3; dx <= 3; ++dx) {
+          const double d = std::sqrt(double(dx * dx + dy * dy));
+          const double w = d == 0 ? 1.0 : std::exp(-std::abs(dx) / (phi * d));
+          ws += w;
+          m1 += w * rig.moments.at(10 + dx, 10 + dy, 0);
+          m2 += w * rig.moments.at(10 + dx, 10 + dy, 1);
+        }
+      m1 /= ws;
+      m2 /= ws;
+      INFO("phi " << phi);
+      REQUIRE(rig.out.at(10, 10, 3) == Approx((m2 - m1 * m1) * 2.0).epsilon(1e-4));
+    }
   }
 }
