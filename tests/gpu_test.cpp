@@ -3,6 +3,7 @@
 // and block shapes, and every stage of the pipeline on the frames of every fixture (each stage
 // fed the CPU's state, so a difference points at the stage that made it). Exact mode: bitwise.
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -396,4 +397,142 @@ TEST_CASE("stages inside the pipeline: CPU vs CUDA bitwise on every fixture's fr
   p.feedback_tap = 0;
   for (int k = 0; k < cap; ++k)
     pipeline.frame(scene.frame(k), false, p, "synthetic frame " + std::to_string(k));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Fast mode, stage by stage: the SvgfFast a-trous iteration and variance estimate (packed
+// storage, FastArith) against the CPU's exact kernels on the same random input, each value
+// within the per-stage tolerance of docs/cuda.md. Inputs are packed and outputs unpacked on the
+// device by the generic forwarding kernels.
+
+namespace {
+
+// Per value: |fast - exact| <= kFastStageTolerance * max(|exact|, 1e-3).
+constexpr double kFastStageTolerance = 1e-4;
+
+double worst_relative(const std::vector<float>& fast, const std::vector<float>& exact,
+                      const std::string& what) {
+  REQUIRE(fast.size() == exact.size());
+  double worst = 0;
+  size_t bad = 0;
+  std::ostringstream first;
+  for (size_t i = 0; i < fast.size(); ++i) {
+    const double e = exact[i], f = fast[i];
+    const double rel = std::fabs(f - e) / std::max(std::fabs(e), 1e-3);
+    if (!(rel <= kFastStageTolerance)) {
+      if (bad++ < 5) first << "  value " << i << ": fast " << f << " exact " << e << "\n";
+    }
+    if (rel > worst) worst = rel;
+  }
+  INFO(what << ": " << bad << " values outside the fast tolerance\n" << first.str());
+  REQUIRE(bad == 0);
+  return worst;
+}
+
+// The device copies of an arena's planar signal as Packed4 and back.
+void pack_on_device(ConstIllumVarView planar, Packed4* packed, int w, int h) {
+  cuda::run(ForwardKernel<ConstIllumVarView, PackedIllumVar<Packed4>>{
+                w, planar, PackedIllumVar<Packed4>(packed)},
+            w, h, {}, "pack");
+}
+void unpack_on_device(const Packed4* packed, IllumVarView planar, int w, int h) {
+  cuda::run(ForwardKernel<PackedIllumVar<const Packed4>, IllumVarView>{
+                w, PackedIllumVar<const Packed4>(packed), planar},
+            w, h, {}, "unpack");
+}
+PackedGuides packed_guides_on_device(const GuideView& device_guides, Packed4* storage) {
+  cuda::run(PackGuidesKernel{device_guides, storage}, device_guides.width, device_guides.height,
+            {}, "pack guides");
+  PackedGuides g;
+  g.width = device_guides.width;
+  g.height = device_guides.height;
+  g.depth_normal_data = storage;
+  g.depth_dx = device_guides.depth_dx;
+  g.depth_dy = device_guides.depth_dy;
+  return g;
+}
+
+}  // namespace
+
+TEST_CASE("fast stages: a-trous and variance within the per-stage tolerance of exact",
+          "[stage][fast]") {
+  double worst_atrous = 0, worst_variance = 0;
+  for (Size s : sizes()) {
+    const int w = s.w, h = s.h;
+    for (int step : {1, 2, 4, 8}) {
+      Arena a(w, h, 17);
+      Random r(71u + static_cast<uint32_t>(step));
+      const size_t n = a.pixels();
+      AtrousKernel k;
+      k.guides = a.guides("guides");
+      r.guides(k.guides);
+      k.in = a.illum_var("in");
+      float* in = const_cast<float*>(k.in.color.r);
+      r.fill(in, 3 * n, 0.f, 2.f);
+      r.fill(in + 3 * n, n, 0.f, 0.3f);
+      k.out = a.illum_var("out");
+      k.step = step;
+      cuda::DeviceArray<float> device(a.host().data(), a.host().size());
+      const Mapper m{a.host().data(), device.get()};
+      const size_t bytes = a.host().size() * sizeof(float);
+      const AtrousKernel on_device = to_device(k, m, bytes);
+      cuda::DeviceArray<Packed4> packed_in(n), packed_out(n), guides(n);
+      pack_on_device(on_device.in, packed_in.get(), w, h);
+      const PackedGuides g = packed_guides_on_device(on_device.guides, guides.get());
+      cuda::run(AtrousIteration<SvgfFast, NormalPowerFixed<7>>{
+                    g, PackedIllumVar<const Packed4>(packed_in.get()),
+                    PackedIllumVar<Packed4>(packed_out.get()), step, k.params},
+                w, h, {}, "fast atrous");
+      unpack_on_device(packed_out.get(), on_device.out, w, h);
+      cpu::for_each_pixel(w, h, k);
+      const std::vector<float> gpu = device.to_host();
+      const size_t out_at = static_cast<size_t>(k.out.color.r - a.host().data());
+      const std::vector<float> fast(gpu.begin() + out_at, gpu.begin() + out_at + 4 * n);
+      const std::vector<float> exact(a.host().begin() + out_at, a.host().begin() + out_at + 4 * n);
+      worst_atrous = std::max(worst_atrous, worst_relative(fast, exact, label("fast atrous", s, {},
+                                                           ", step " + std::to_string(step))));
+    }
+    {
+      Arena a(w, h, 24);
+      Random r(83u + static_cast<uint32_t>(w));
+      const size_t n = a.pixels();
+      VarianceKernel k;
+      k.guides = a.guides("guides");
+      r.guides(k.guides);
+      k.accumulated = a.illum_var("accumulated");
+      float* acc = const_cast<float*>(k.accumulated.color.r);
+      r.fill(acc, 3 * n, 0.f, 2.f);
+      r.fill(acc + 3 * n, n, 0.f, 0.3f);
+      float* moments = a.planes("moments", 2);
+      float* history = a.planes("history", 1);
+      for (size_t i = 0; i < n; ++i) {
+        moments[i] = r.uniform(0.f, 1.f);
+        moments[n + i] = moments[i] * moments[i] + r.uniform(0.05f, 0.5f);
+        history[i] = r.chance(0.7) ? std::floor(r.uniform(1.f, 4.f)) : r.uniform(4.f, 32.f);
+      }
+      k.moment1 = moments;
+      k.moment2 = moments + n;
+      k.history = history;
+      k.out = a.illum_var("out");
+      cuda::DeviceArray<float> device(a.host().data(), a.host().size());
+      const VarianceKernel on_device =
+          to_device(k, Mapper{a.host().data(), device.get()}, a.host().size() * sizeof(float));
+      cuda::DeviceArray<Packed4> packed_out(n), guides(n);
+      const PackedGuides g = packed_guides_on_device(on_device.guides, guides.get());
+      cuda::run(VarianceEstimate<SvgfFast, NormalPowerFixed<7>>{
+                    g, on_device.accumulated, on_device.moment1, on_device.moment2,
+                    on_device.history, PackedIllumVar<Packed4>(packed_out.get()), k.params},
+                w, h, {}, "fast variance");
+      unpack_on_device(packed_out.get(), on_device.out, w, h);
+      cpu::for_each_pixel(w, h, k);
+      const std::vector<float> gpu = device.to_host();
+      const size_t out_at = static_cast<size_t>(k.out.color.r - a.host().data());
+      const std::vector<float> fast(gpu.begin() + out_at, gpu.begin() + out_at + 4 * n);
+      const std::vector<float> exact(a.host().begin() + out_at, a.host().begin() + out_at + 4 * n);
+      worst_variance =
+          std::max(worst_variance, worst_relative(fast, exact, label("fast variance", s, {})));
+    }
+  }
+  std::printf("fast stages vs exact, worst relative difference: atrous %.3g, variance %.3g "
+              "(tolerance %.0e)\n", worst_atrous, worst_variance, kFastStageTolerance);
 }
