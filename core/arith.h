@@ -6,9 +6,10 @@
 //  ExactArith: IEEE + - * / and sqrt, the project's det_exp/det_pow, every sum rounded in the
 //              written order. Compiled without contraction on both sides: the CPU and the GPU
 //              give the same bits.
-//  FastArith:  GPU intrinsics where they pay: __expf, approximate reciprocals and rsqrt, FMA
-//              for the running sums, pow by squaring. Used only in device code; its tolerance
-//              against exact mode is written in docs/cuda.md and checked by the GPU tests.
+//  FastArith:  GPU intrinsics where they pay: ex2.approx.ftz for exp, approximate reciprocals
+//              and rsqrt, FMA for the running sums and dot products, fmaxf/fminf and the .SAT
+//              clamp. Device code only; its tolerance against exact mode, per stage and per
+//              frame, is written in docs/cuda.md and checked by the GPU tests.
 #include <cmath>
 
 #include "core/det_math.h"
