@@ -19,7 +19,6 @@
 namespace svgf {
 
 struct ExactArith {
-  static constexpr bool kExact = true;
   // max/min/abs with the project's NaN rules (core/vec.h: max_f(NaN, b) is b, max_f(a, NaN) is
   // NaN), which the edge-stopping weights rely on; the same select on both sides.
   SVGF_HD static float max(float a, float b) { return max_f(a, b); }
@@ -76,9 +75,12 @@ SVGF_HD constexpr float inv_distance_small(int dx, int dy) {
                    : -1.f;
 }
 
+// Rec. 709 luminance (core/vec.h) evaluated with an arithmetic policy.
+template <class Arith>
+SVGF_HD float luminance_with(Vec3 c) { return Arith::dot(rec709_weights(), c); }
+
 #if defined(__CUDACC__)
 struct FastArith {
-  static constexpr bool kExact = false;
   // One instruction each (FMNMX, FADD |x|). fmaxf/fminf return the non-NaN operand: where the
   // exact rules keep a NaN to zero a weight, these drop it instead; the callers' results agree
   // (edge_stopping_weight: a NaN normal gives cos 0, hence weight 0, either way).

@@ -43,8 +43,6 @@ class CpuBackend {
     check_frame_size_unchanged(width_, height_, w, h);
     width_ = w;
     height_ = h;
-    prev_planes_ = Image(w, h, 8);
-    prev_mesh_id_.assign(static_cast<size_t>(w) * h, 0u);
     return true;
   }
   void release() { width_ = height_ = 0; }
@@ -64,8 +62,13 @@ class CpuBackend {
   }
 
   // The previous frame's guides: a copy taken by finish(), since the caller's frame may not
-  // outlive the call.
-  GuideView previous_guides() const {
+  // outlive the call. Only a method that asks for them pays for the copy (the first call
+  // allocates it; the first frame has no history, so its planes are not read).
+  GuideView previous_guides() {
+    if (prev_planes_.width() != width_ || prev_planes_.height() != height_) {
+      prev_planes_ = Image(width_, height_, 8);
+      prev_mesh_id_.assign(static_cast<size_t>(width_) * height_, 0u);
+    }
     GuideView g;
     g.width = width_;
     g.height = height_;
@@ -85,6 +88,7 @@ class CpuBackend {
   }
 
   void finish(const Frame& f, Image&) {
+    if (prev_planes_.empty()) return;  // no method here reads the previous guides
     const size_t n = f.color.pixel_count();
     auto copy = [&](const float* src, int plane) {
       std::copy(src, src + n, prev_planes_.plane(plane));

@@ -46,7 +46,6 @@ class CpuEngine {
 
   // Per-frame bookkeeping: cleared by begin_frame().
   void begin_frame() { times_.clear(); counted_ = 0; }
-  void end_frame() {}
   const StageTimes& times() const { return times_; }
   int64_t counted() const { return counted_; }
 

@@ -27,7 +27,6 @@ class CudaBackend {
   }
 
   Engine& engine() { return engine_; }
-  Mode mode() const { return mode_; }
 
   std::string description() const {
     cudaDeviceProp prop{};

@@ -74,16 +74,24 @@ void CudaEngine::run_counting(const char* stage, const Kernel& kernel, int width
 template <class K>
 int64_t run(const K& k, int width, int height, LaunchShape shape = {},
             const char* what = "kernel") {
-  constexpr bool counting = std::is_same_v<decltype(k(0, 0)), bool>;
-  DeviceArray<unsigned long long> count(1);
-  SVGF_CUDA_CHECK(cudaMemsetAsync(count.get(), 0, sizeof(unsigned long long), nullptr),
-                  "cudaMemset of a counter");
-  launch(k, width, height, shape, nullptr, what, counting ? count.get() : nullptr);
-  SVGF_CUDA_CHECK(cudaStreamSynchronize(nullptr), std::string("kernel '") + what + "' execution");
-  if (!counting) return 0;
-  unsigned long long n = 0;
-  count.download(&n, 1);
-  return static_cast<int64_t>(n);
+  const auto wait = [&] {
+    SVGF_CUDA_CHECK(cudaStreamSynchronize(nullptr),
+                    std::string("kernel '") + what + "' execution");
+  };
+  if constexpr (!std::is_same_v<decltype(k(0, 0)), bool>) {
+    launch(k, width, height, shape, nullptr, what);
+    wait();
+    return 0;
+  } else {
+    DeviceArray<unsigned long long> count(1);
+    SVGF_CUDA_CHECK(cudaMemsetAsync(count.get(), 0, sizeof(unsigned long long), nullptr),
+                    "cudaMemset of a counter");
+    launch(k, width, height, shape, nullptr, what, count.get());
+    wait();
+    unsigned long long n = 0;
+    count.download(&n, 1);
+    return static_cast<int64_t>(n);
+  }
 }
 
 }  // namespace svgf::cuda

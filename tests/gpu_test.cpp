@@ -108,6 +108,48 @@ class Random {
   std::mt19937 rng_;
 };
 
+// The variance stage's inputs in an arena: random guides, accumulated color and variance,
+// moments (E[l^2] >= E[l]^2 + floor), history lengths young (1-3) with probability
+// `young_share`, else 4-32.
+VarianceKernel random_variance_kernel(Arena& a, Random& r, double young_share,
+                                      float second_moment_floor) {
+  const size_t n = a.pixels();
+  VarianceKernel k;
+  k.guides = a.guides("guides");
+  r.guides(k.guides);
+  k.accumulated = a.illum_var("accumulated");
+  float* accumulated = const_cast<float*>(k.accumulated.color.r);
+  r.fill(accumulated, 3 * n, 0.f, 2.f);
+  r.fill(accumulated + 3 * n, n, 0.f, 0.3f);
+  float* moments = a.planes("moments", 2);
+  float* history = a.planes("history", 1);
+  for (size_t i = 0; i < n; ++i) {
+    moments[i] = r.uniform(0.f, 1.f);
+    moments[n + i] = moments[i] * moments[i] + r.uniform(second_moment_floor, 0.5f);
+    history[i] = r.chance(young_share) ? std::floor(r.uniform(1.f, 4.f)) : r.uniform(4.f, 32.f);
+  }
+  k.moment1 = moments;
+  k.moment2 = moments + n;
+  k.history = history;
+  k.out = a.illum_var("out");
+  return k;
+}
+
+// The a-trous stage's inputs in an arena: random guides, color and variance.
+AtrousKernel random_atrous_kernel(Arena& a, Random& r, int step) {
+  const size_t n = a.pixels();
+  AtrousKernel k;
+  k.guides = a.guides("guides");
+  r.guides(k.guides);
+  k.in = a.illum_var("in");
+  float* in = const_cast<float*>(k.in.color.r);
+  r.fill(in, 3 * n, 0.f, 2.f);
+  r.fill(in + 3 * n, n, 0.f, 0.3f);
+  k.out = a.illum_var("out");
+  k.step = step;
+  return k;
+}
+
 }  // namespace
 
 TEST_CASE("stage demodulate: CPU vs CUDA bitwise on random input", "[stage]") {
@@ -173,26 +215,8 @@ TEST_CASE("stage variance: CPU vs CUDA bitwise on random input", "[stage]") {
     for (cuda::LaunchShape b : shapes()) {
       Arena a(s.w, s.h, 24);
       Random r(37u + static_cast<uint32_t>(s.w * 3));
-      const size_t n = a.pixels();
-      VarianceKernel k;
-      k.guides = a.guides("guides");
-      r.guides(k.guides);
-      k.accumulated = a.illum_var("accumulated");
-      float* accumulated = const_cast<float*>(k.accumulated.color.r);
-      r.fill(accumulated, 3 * n, 0.f, 2.f);
-      r.fill(accumulated + 3 * n, n, 0.f, 0.3f);
-      float* moments = a.planes("moments", 2);
-      float* history = a.planes("history", 1);
-      for (size_t i = 0; i < n; ++i) {
-        moments[i] = r.uniform(0.f, 1.f);
-        moments[n + i] = moments[i] * moments[i] + r.uniform(0.f, 0.5f);
-        history[i] = r.chance(0.5) ? std::floor(r.uniform(1.f, 4.f)) : r.uniform(4.f, 32.f);
-      }
-      k.moment1 = moments;
-      k.moment2 = moments + n;
-      k.history = history;
-      k.out = a.illum_var("out");
-      r.fill(k.out.color.r, 4 * n, 7.f, 8.f);
+      const VarianceKernel k = random_variance_kernel(a, r, 0.5, 0.f);
+      r.fill(k.out.color.r, 4 * a.pixels(), 7.f, 8.f);
       check_stage(a, k, label("variance", s, b), b);
     }
 }
@@ -215,17 +239,9 @@ TEST_CASE("stage atrous: CPU vs CUDA bitwise on random input, every step", "[sta
           Arena a(s.w, s.h, 17);
           Random r(53u + static_cast<uint32_t>(step));
           const size_t n = a.pixels();
-          AtrousKernel k;
-          k.guides = a.guides("guides");
-          r.guides(k.guides);
-          k.in = a.illum_var("in");
-          float* in = const_cast<float*>(k.in.color.r);
-          r.fill(in, 3 * n, 0.f, 2.f);
-          r.fill(in + 3 * n, n, 0.f, 0.3f);
-          in[n / 2] = 1e-39f;  // a subnormal color value survives the filter on both sides
-          k.out = a.illum_var("out");
+          AtrousKernel k = random_atrous_kernel(a, r, step);
+          const_cast<float*>(k.in.color.r)[n / 2] = 1e-39f;  // a subnormal survives on both sides
           r.fill(k.out.color.r, 4 * n, 7.f, 8.f);
-          k.step = step;
           k.params.phi_normal = v.phi_normal;
           k.params.phi_depth = v.phi_depth;
           check_stage(a, k,
@@ -248,7 +264,7 @@ TEST_CASE("stage remodulate, tonemap, copy: CPU vs CUDA bitwise on random input"
         r.fill(emission.r, 3 * n, 0.f, 2.f);
         for (size_t i = 0; i < n; i += 13) albedo.b[i] = kNaN;
         r.fill(output.r, 3 * n, 7.f, 8.f);
-        check_stage(a, RemodulateKernel{s.w, illumination, albedo, emission, output, 1e-3f},
+        check_stage(a, RemodulateKernel{s.w, illumination, {albedo, emission, output, 1e-3f}},
                     label("remodulate", s, b), b);
       }
       {
@@ -463,15 +479,7 @@ TEST_CASE("fast stages: a-trous and variance within the per-stage tolerance of e
       Arena a(w, h, 17);
       Random r(71u + static_cast<uint32_t>(step));
       const size_t n = a.pixels();
-      AtrousKernel k;
-      k.guides = a.guides("guides");
-      r.guides(k.guides);
-      k.in = a.illum_var("in");
-      float* in = const_cast<float*>(k.in.color.r);
-      r.fill(in, 3 * n, 0.f, 2.f);
-      r.fill(in + 3 * n, n, 0.f, 0.3f);
-      k.out = a.illum_var("out");
-      k.step = step;
+      const AtrousKernel k = random_atrous_kernel(a, r, step);
       cuda::DeviceArray<float> device(a.host().data(), a.host().size());
       const Mapper m{a.host().data(), device.get()};
       const size_t bytes = a.host().size() * sizeof(float);
@@ -496,24 +504,7 @@ TEST_CASE("fast stages: a-trous and variance within the per-stage tolerance of e
       Arena a(w, h, 24);
       Random r(83u + static_cast<uint32_t>(w));
       const size_t n = a.pixels();
-      VarianceKernel k;
-      k.guides = a.guides("guides");
-      r.guides(k.guides);
-      k.accumulated = a.illum_var("accumulated");
-      float* acc = const_cast<float*>(k.accumulated.color.r);
-      r.fill(acc, 3 * n, 0.f, 2.f);
-      r.fill(acc + 3 * n, n, 0.f, 0.3f);
-      float* moments = a.planes("moments", 2);
-      float* history = a.planes("history", 1);
-      for (size_t i = 0; i < n; ++i) {
-        moments[i] = r.uniform(0.f, 1.f);
-        moments[n + i] = moments[i] * moments[i] + r.uniform(0.05f, 0.5f);
-        history[i] = r.chance(0.7) ? std::floor(r.uniform(1.f, 4.f)) : r.uniform(4.f, 32.f);
-      }
-      k.moment1 = moments;
-      k.moment2 = moments + n;
-      k.history = history;
-      k.out = a.illum_var("out");
+      const VarianceKernel k = random_variance_kernel(a, r, 0.7, 0.05f);
       cuda::DeviceArray<float> device(a.host().data(), a.host().size());
       const VarianceKernel on_device =
           to_device(k, Mapper{a.host().data(), device.get()}, a.host().size() * sizeof(float));

@@ -49,7 +49,7 @@ TEST_CASE("remodulate undoes demodulate to within an ulp", "[demodulate][remodul
   test::fill_uniform(color, 0.f, 20.f, 1);
   test::fill_uniform(albedo, 0.01f, 1.f, 2);
   cpu::for_each_pixel(33, 9, DemodulateKernel{33, color.rgb(), albedo.rgb(), {}, illum.rgb(), 1e-3f});
-  cpu::for_each_pixel(33, 9, RemodulateKernel{33, illum.rgb(), albedo.rgb(), {}, out.rgb(), 1e-3f});
+  cpu::for_each_pixel(33, 9, RemodulateKernel{33, illum.rgb(), {albedo.rgb(), {}, out.rgb(), 1e-3f}});
   REQUIRE(test::max_relative_difference(out, color) <= 2.4e-7);  // two roundings
 }
 
@@ -65,7 +65,7 @@ TEST_CASE("demodulate takes the emission out and remodulate puts it back", "[dem
     for (int x = 0; x < 6; ++x)
       if (x != 2 || y != 1)
         REQUIRE(illum.at(x, y, 1) == (color.at(x, y, 1) - emission.at(x, y, 1)) / 0.5f);
-  cpu::for_each_pixel(6, 4, RemodulateKernel{6, illum.rgb(), albedo.rgb(), emission.rgb(), out.rgb(), 1e-3f});
+  cpu::for_each_pixel(6, 4, RemodulateKernel{6, illum.rgb(), {albedo.rgb(), emission.rgb(), out.rgb(), 1e-3f}});
   CHECK(out.at(2, 1, 0) == emission.at(2, 1, 0));
   CHECK(out.at(3, 2, 2) == Approx(color.at(3, 2, 2)).epsilon(1e-6));
 }

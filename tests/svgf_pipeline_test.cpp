@@ -1,5 +1,6 @@
 // The whole SVGF pipeline on the CPU backend through the public Denoiser interface.
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <thread>
 
@@ -24,11 +25,15 @@ DenoiserConfig cpu_config(int threads) {
   return c;
 }
 
-std::vector<Image> denoise_sequence(Denoiser& d, const test::SyntheticScene& scene, int frames) {
+// `edit` (optional) changes each frame before it is denoised.
+std::vector<Image> denoise_sequence(Denoiser& d, const test::SyntheticScene& scene, int frames,
+                                    const std::function<void(Frame&)>& edit = {}) {
   std::vector<Image> out;
   for (int k = 0; k < frames; ++k) {
+    Frame f = scene.frame(k);
+    if (edit) edit(f);
     out.emplace_back();
-    d.denoise(scene.frame(k), out.back());
+    d.denoise(f, out.back());
   }
   return out;
 }
@@ -222,39 +227,32 @@ TEST_CASE("pipeline: the defaults are Falcor's SVGFPass values, as the pipeline 
   // The synthetic scene's surfaces are flat and face the camera: bumps on the normals and a tilt
   // of the depth let phi_normal and phi_depth matter.
   test::SyntheticScene scene;
-  auto denoise_sequence = [&](Denoiser& d, const test::SyntheticScene& s, int frames) {
-    std::vector<Image> out;
-    for (int k = 0; k < frames; ++k) {
-      Frame f = s.frame(k);
-      for (int y = 0; y < f.height(); ++y)
-        for (int x = 0; x < f.width(); ++x) {
-          if (!(f.depth.at(x, y, 0) > 0.f)) continue;
-          f.depth.at(x, y, 0) += 0.02f * static_cast<float>(x);
-          f.depth_gradient.at(x, y, 0) += 0.02f;
-          const float bx = 0.15f * std::sin(0.9f * x), by = 0.15f * std::cos(0.7f * y);
-          float n[3] = {f.normal.at(x, y, 0) + bx, f.normal.at(x, y, 1) + by, f.normal.at(x, y, 2)};
-          const float len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-          for (int c = 0; c < 3; ++c) f.normal.at(x, y, c) = n[c] / len;
-        }
-      out.emplace_back();
-      d.denoise(f, out.back());
-    }
-    return out;
+  const auto bumps = [](Frame& f) {
+    for (int y = 0; y < f.height(); ++y)
+      for (int x = 0; x < f.width(); ++x) {
+        if (!(f.depth.at(x, y, 0) > 0.f)) continue;
+        f.depth.at(x, y, 0) += 0.02f * static_cast<float>(x);
+        f.depth_gradient.at(x, y, 0) += 0.02f;
+        const float bx = 0.15f * std::sin(0.9f * x), by = 0.15f * std::cos(0.7f * y);
+        float n[3] = {f.normal.at(x, y, 0) + bx, f.normal.at(x, y, 1) + by, f.normal.at(x, y, 2)};
+        const float len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        for (int c = 0; c < 3; ++c) f.normal.at(x, y, c) = n[c] / len;
+      }
   };
   DenoiserConfig by_default = cpu_config(2);
   DenoiserConfig by_hand = cpu_config(2);
   by_hand.svgf = falcor;
   auto a = make_denoiser(by_default);
   auto b = make_denoiser(by_hand);
-  const auto out_a = denoise_sequence(*a, scene, 8);
-  const auto out_b = denoise_sequence(*b, scene, 8);
+  const auto out_a = denoise_sequence(*a, scene, 8, bumps);
+  const auto out_b = denoise_sequence(*b, scene, 8, bumps);
   for (int k = 0; k < 8; ++k) test::require_identical(out_a[k], out_b[k], "frame " + std::to_string(k));
 
   auto changed = [&](auto change) {
     DenoiserConfig c = by_hand;
     change(c.svgf);
     auto d = make_denoiser(c);
-    const auto out = denoise_sequence(*d, scene, 8);
+    const auto out = denoise_sequence(*d, scene, 8, bumps);
     size_t differing = 0;
     for (int k = 0; k < 8; ++k)
       for (size_t i = 0; i < out[k].data().size(); ++i)

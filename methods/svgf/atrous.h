@@ -86,7 +86,7 @@ struct AtrousIteration {
         atrous_inv_phi_luminance<Arith>(params, prefiltered_variance<Arith>(guides, in, x, y));
     const float inv_phi_z = inv_depth_tolerance<Arith>(
         params.phi_depth, guides.depth_fwidth(i), params.depth_gradient_floor);
-    const EdgeSample c{gc.depth, gc.normal, Arith::dot(rec709_weights(), center.color)};
+    const EdgeSample c{gc.depth, gc.normal, luminance_with<Arith>(center.color)};
     const Power normal_power = Power::of(params.phi_normal);
 
     // The centre enters with its kernel weight and no edge-stopping term, so the sum is never 0.
@@ -135,7 +135,7 @@ struct AtrousIteration {
         const int j = guides.index(xq, yq);
         const ColorVar q = in.load(j);
         const DepthNormal gq = guides.depth_normal(j);
-        const EdgeSample sq{gq.depth, gq.normal, Arith::dot(rec709_weights(), q.color)};
+        const EdgeSample sq{gq.depth, gq.normal, luminance_with<Arith>(q.color)};
         const float k = b3_weight(dx < 0 ? -dx : dx) * b3_weight(dy < 0 ? -dy : dy);
         const float tap_scale = Arith::tap_depth_scale_unrolled(depth_scale, dx, dy, step);
         const float w =

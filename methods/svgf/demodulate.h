@@ -32,9 +32,7 @@ struct DemodulateKernel {
   SVGF_HD bool operator()(int x, int y) const {
     const int i = y * width + x;
     bool replaced = false;
-    const Vec3 c = make_vec3(sanitize_radiance(color.r[i], replaced),
-                             sanitize_radiance(color.g[i], replaced),
-                             sanitize_radiance(color.b[i], replaced));
+    const Vec3 c = sanitize_radiance(color.load(i), replaced);
     illumination.store(i, demodulated(c, emission.load_or_zero(i), albedo.load(i), albedo_epsilon));
     return replaced;
   }

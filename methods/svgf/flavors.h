@@ -29,7 +29,6 @@ struct SvgfExact {
   // The a-trous taps as one loop with bounds tests (a second, test-free copy for interior
   // pixels made the exact kernel larger and slower on the H100).
   static constexpr bool kSplitInterior = false;
-  static const char* name() { return "exact"; }
   template <class Body>
   static void with_normal_power(float phi_normal, const Body& body) {
     with_normal_power_of<Arith>(phi_normal, body);
@@ -47,7 +46,6 @@ struct SvgfFast {
   static constexpr bool kFused = true;
   // Interior pixels (5x5 footprint inside the image) skip the 24 bounds tests.
   static constexpr bool kSplitInterior = true;
-  static const char* name() { return "fast"; }
   template <class Body>
   static void with_normal_power(float phi_normal, const Body& body) {
     with_normal_power_of<Arith>(phi_normal, body);

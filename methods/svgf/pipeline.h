@@ -50,7 +50,6 @@ struct SvgfFrameBuffers {
   // Output: the denoised, remodulated color.
   RgbView output;
 
-  int width() const { return guides.width; }
   size_t pixels() const { return static_cast<size_t>(guides.width) * guides.height; }
   IllumVarView filtered(int k) const {
     float* p = signal[k];

@@ -1,6 +1,7 @@
 #pragma once
 // Final stage: remodulate. Multiplies the filtered illumination by the same guarded albedo that
 // demodulate divided by, restoring texture, and adds the emission back.
+#include "core/copy.h"
 #include "methods/svgf/demodulate.h"
 
 namespace svgf {
@@ -9,19 +10,21 @@ SVGF_HD Vec3 remodulated(Vec3 illumination, Vec3 albedo, Vec3 emission, float al
   return illumination * guarded_albedo(albedo, albedo_epsilon) + emission;
 }
 
-struct RemodulateKernel {
-  int width = 0;
-  ConstRgbView illumination;
+// Remodulates as it stores: what the remodulate stage writes into, and what the fused pipeline's
+// last a-trous iteration stores into directly (fast mode).
+struct RemodulateSink {
   ConstRgbView albedo;
   ConstRgbView emission;  // optional
   RgbView output;
   float albedo_epsilon = 1e-3f;
-
-  SVGF_HD void operator()(int x, int y) const {
-    const int i = y * width + x;
-    output.store(i, remodulated(illumination.load(i), albedo.load(i), emission.load_or_zero(i),
+  SVGF_HD void store(int i, Vec3 illumination) const {
+    output.store(i, remodulated(illumination, albedo.load(i), emission.load_or_zero(i),
                                 albedo_epsilon));
   }
+  SVGF_HD void store(int i, ColorVar v) const { store(i, v.color); }
 };
+
+// The stage on its own: RemodulateKernel{width, illumination, {albedo, emission, output, eps}}.
+using RemodulateKernel = ForwardKernel<ConstRgbView, RemodulateSink>;
 
 }  // namespace svgf

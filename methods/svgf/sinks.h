@@ -1,21 +1,11 @@
 #pragma once
 // Where an a-trous iteration's result can go besides the next iteration's buffer, for the fused
-// pipeline (fast mode): the remodulated output, and a copy into the color history.
+// pipeline (fast mode): the remodulated output (RemodulateSink, methods/svgf/remodulate.h), and a
+// copy into the color history.
 #include "core/views.h"
 #include "methods/svgf/remodulate.h"
 
 namespace svgf {
-
-// Remodulates as it stores: the last iteration writes the frame's output directly.
-struct RemodulateSink {
-  ConstRgbView albedo;
-  ConstRgbView emission;  // optional
-  RgbView output;
-  float albedo_epsilon = 1e-3f;
-  SVGF_HD void store(int i, ColorVar v) const {
-    output.store(i, remodulated(v.color, albedo.load(i), emission.load_or_zero(i), albedo_epsilon));
-  }
-};
 
 // Stores into `out` and copies the color into the history: the feedback tap's iteration.
 template <class Out>

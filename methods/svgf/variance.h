@@ -32,7 +32,7 @@ struct VarianceEstimate {
       out.store(i, make_color_var(center_color, accumulated.variance[i]));
       return;
     }
-    const EdgeSample c{gc.depth, gc.normal, Arith::dot(rec709_weights(), center_color)};
+    const EdgeSample c{gc.depth, gc.normal, luminance_with<Arith>(center_color)};
     const float inv_phi_z = inv_depth_tolerance<Arith>(
         params.spatial_variance_phi_depth, guides.depth_fwidth(i), params.depth_gradient_floor);
     const float inv_phi_l = Arith::recip(params.phi_color);
@@ -49,7 +49,7 @@ struct VarianceEstimate {
         const int j = guides.index(xq, yq);
         const Vec3 cq = accumulated.color.load(j);
         const DepthNormal gq = guides.depth_normal(j);
-        const EdgeSample q{gq.depth, gq.normal, Arith::dot(rec709_weights(), cq)};
+        const EdgeSample q{gq.depth, gq.normal, luminance_with<Arith>(cq)};
         const float w =
             edge_stopping_weight<Arith>(c, q, Arith::tap_depth_scale(inv_phi_z, dx, dy, 1),
                                         normal_power, inv_phi_l);
