@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # The GPU checks of docs/cuda.md, on a machine with a CUDA device, from the repository root:
-# the full GPU test binary, the CUDA variants of the OpenCV checks, compute-sanitizer memcheck
-# and racecheck on the GPU tests' reduced mode, and (when svgf-bench bundles are given) the
-# 1080p speed of this build against a baseline build, interleaved in one sitting.
+# the full GPU test binary, the CUDA variants (cuda, cuda-fast) of every test body of the stage,
+# pipeline and OpenCV test binaries (tests/test_device.h), compute-sanitizer memcheck and
+# racecheck on the GPU tests' reduced mode and the stage tests, and (when svgf-bench bundles
+# are given) the 1080p speed of this build against a baseline build, in one sitting.
 # Bundles made on the build machine with
-#   ../shared/gpu/bundle .gpu/tests build/tests/svgf_gpu_tests build/tests/svgf_opencv_tests
+#   ../shared/gpu/bundle .gpu/tests build/tests/svgf_gpu_tests build/tests/svgf_stage_tests \
+#     build/tests/svgf_pipeline_tests build/tests/svgf_opencv_tests
 #   ../shared/gpu/bundle .gpu/bench build-bench/bench/svgf-bench          (this build)
 #   ../shared/gpu/bundle .gpu/base  OLD/build-bench/bench/svgf-bench      (optional baseline)
 # Usage: kernels_cuda/run_gpu_checks.sh [LOG_DIR [tests|speed|all]]   (logs default to $OUT)
@@ -24,9 +26,15 @@ if [ "$what" != speed ]; then
 timeout 300 .gpu/tests/run svgf_gpu_tests --durations yes >"$logs/gpu_tests.txt" 2>&1
 rc_tests=$?
 tail -n 12 "$logs/gpu_tests.txt"
-timeout 120 .gpu/tests/run svgf_opencv_tests "[cuda]" >"$logs/opencv_cuda.txt" 2>&1
-rc_opencv=$?
-tail -n 3 "$logs/opencv_cuda.txt"
+# Every test body's CUDA variants: cuda (exact: each stage run also compared bitwise with the
+# CPU) and cuda-fast (within the fast tolerance).
+rc_devices=0
+for t in svgf_stage_tests svgf_pipeline_tests svgf_opencv_tests; do
+  timeout 200 .gpu/tests/run $t "[cuda]" --durations yes >"$logs/${t}_cuda.txt" 2>&1
+  rc=$?
+  [ $rc -ne 0 ] && rc_devices=$rc
+  echo "$t [cuda]: exit $rc"; tail -n 3 "$logs/${t}_cuda.txt"
+done
 
 # The bundle's libraries, unpacked by the runs above, for the sanitizer to start the binary.
 lib=/tmp/bundle-runtime-$(md5sum .gpu/tests/runtime.tar.xz | cut -c1-12)
@@ -38,10 +46,16 @@ for tool in memcheck racecheck; do
     "$sanitizer" --tool "$tool" "${extra[@]}" --error-exitcode 99 \
     .gpu/tests/bin/svgf_gpu_tests --reduced '~[cuda-errors]~[bench]' >"$logs/$tool.txt" 2>&1
   rc=$?
+  LD_LIBRARY_PATH="$lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" timeout 200 \
+    "$sanitizer" --tool "$tool" "${extra[@]}" --error-exitcode 99 \
+    .gpu/tests/bin/svgf_stage_tests "[cuda]" >"$logs/${tool}_stages.txt" 2>&1
+  rc2=$?
+  [ $rc -eq 0 ] && rc=$rc2
   [ "$tool" = memcheck ] && rc_memcheck=$rc || rc_racecheck=$rc
-  grep -E "ERROR SUMMARY|RACECHECK SUMMARY|LEAK SUMMARY|test cases|summary:" "$logs/$tool.txt"
+  grep -E "ERROR SUMMARY|RACECHECK SUMMARY|LEAK SUMMARY|test cases|summary:" \
+    "$logs/$tool.txt" "$logs/${tool}_stages.txt"
 done
-echo "exit codes: tests $rc_tests, opencv cuda $rc_opencv, memcheck $rc_memcheck, racecheck $rc_racecheck"
+echo "exit codes: gpu tests $rc_tests, device variants $rc_devices, memcheck $rc_memcheck, racecheck $rc_racecheck"
 fi
 [ "$what" = tests ] && exit 0
 

@@ -8,6 +8,7 @@
 #include <limits>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <catch2/catch.hpp>
@@ -418,14 +419,11 @@ TEST_CASE("stages inside the pipeline: CPU vs CUDA bitwise on every fixture's fr
 // ---------------------------------------------------------------------------------------------
 // Fast mode, stage by stage: the SvgfFast a-trous iteration and variance estimate (packed
 // storage, FastArith) against the CPU's exact kernels on the same random input, each value
-// within the per-stage tolerance of docs/cuda.md. Inputs are packed and outputs unpacked on the
-// device by the generic forwarding kernels.
+// within the per-stage tolerance of docs/cuda.md (the StageRunner packs and unpacks).
 
 namespace {
 
-// Per value: |fast - exact| <= kFastStageTolerance * max(|exact|, 1e-3).
-constexpr double kFastStageTolerance = 1e-4;
-
+// Per value: |fast - exact| <= test::kFastTolerance * max(|exact|, 1e-3).
 double worst_relative(const std::vector<float>& fast, const std::vector<float>& exact,
                       const std::string& what) {
   REQUIRE(fast.size() == exact.size());
@@ -435,7 +433,7 @@ double worst_relative(const std::vector<float>& fast, const std::vector<float>& 
   for (size_t i = 0; i < fast.size(); ++i) {
     const double e = exact[i], f = fast[i];
     const double rel = std::fabs(f - e) / std::max(std::fabs(e), 1e-3);
-    if (!(rel <= kFastStageTolerance)) {
+    if (!(rel <= test::kFastTolerance)) {
       if (bad++ < 5) first << "  value " << i << ": fast " << f << " exact " << e << "\n";
     }
     if (rel > worst) worst = rel;
@@ -445,27 +443,12 @@ double worst_relative(const std::vector<float>& fast, const std::vector<float>& 
   return worst;
 }
 
-// The device copies of an arena's planar signal as Packed4 and back.
-void pack_on_device(ConstIllumVarView planar, Packed4* packed, int w, int h) {
-  cuda::run(ForwardKernel<ConstIllumVarView, PackedIllumVar<Packed4>>{
-                w, planar, PackedIllumVar<Packed4>(packed)},
-            w, h, {}, "pack");
-}
-void unpack_on_device(const Packed4* packed, IllumVarView planar, int w, int h) {
-  cuda::run(ForwardKernel<PackedIllumVar<const Packed4>, IllumVarView>{
-                w, PackedIllumVar<const Packed4>(packed), planar},
-            w, h, {}, "unpack");
-}
-PackedGuides packed_guides_on_device(const GuideView& device_guides, Packed4* storage) {
-  cuda::run(PackGuidesKernel{device_guides, storage}, device_guides.width, device_guides.height,
-            {}, "pack guides");
-  PackedGuides g;
-  g.width = device_guides.width;
-  g.height = device_guides.height;
-  g.depth_normal_data = storage;
-  g.depth_dx = device_guides.depth_dx;
-  g.depth_dy = device_guides.depth_dy;
-  return g;
+// Random guides in a frame (Random::guides writes through the frame's views).
+Frame random_guides_frame(Random& r, int w, int h) {
+  Frame f;
+  f.allocate(w, h);
+  r.guides(f.guides());
+  return f;
 }
 
 }  // namespace
@@ -475,55 +458,52 @@ TEST_CASE("fast stages: a-trous and variance within the per-stage tolerance of e
   double worst_atrous = 0, worst_variance = 0;
   for (Size s : sizes()) {
     const int w = s.w, h = s.h;
+    const size_t n = static_cast<size_t>(w) * h;
     for (int step : {1, 2, 4, 8}) {
-      Arena a(w, h, 17);
       Random r(71u + static_cast<uint32_t>(step));
-      const size_t n = a.pixels();
-      const AtrousKernel k = random_atrous_kernel(a, r, step);
-      cuda::DeviceArray<float> device(a.host().data(), a.host().size());
-      const Mapper m{a.host().data(), device.get()};
-      const size_t bytes = a.host().size() * sizeof(float);
-      const AtrousKernel on_device = to_device(k, m, bytes);
-      cuda::DeviceArray<Packed4> packed_in(n), packed_out(n), guides(n);
-      pack_on_device(on_device.in, packed_in.get(), w, h);
-      const PackedGuides g = packed_guides_on_device(on_device.guides, guides.get());
-      cuda::run(AtrousIteration<SvgfFast, NormalPowerFixed<7>>{
-                    g, PackedIllumVar<const Packed4>(packed_in.get()),
-                    PackedIllumVar<Packed4>(packed_out.get()), step, k.params},
-                w, h, {}, "fast atrous");
-      unpack_on_device(packed_out.get(), on_device.out, w, h);
-      cpu::for_each_pixel(w, h, k);
-      const std::vector<float> gpu = device.to_host();
-      const size_t out_at = static_cast<size_t>(k.out.color.r - a.host().data());
-      const std::vector<float> fast(gpu.begin() + out_at, gpu.begin() + out_at + 4 * n);
-      const std::vector<float> exact(a.host().begin() + out_at, a.host().begin() + out_at + 4 * n);
-      worst_atrous = std::max(worst_atrous, worst_relative(fast, exact, label("fast atrous", s, {},
-                                                           ", step " + std::to_string(step))));
+      const Frame f = random_guides_frame(r, w, h);
+      Image in(w, h, 4), exact(w, h, 4), fast(w, h, 4);
+      r.fill(in.plane(0), 3 * n, 0.f, 2.f);
+      r.fill(in.plane(3), n, 0.f, 0.3f);
+      const SvgfParams p;
+      cpu::for_each_pixel(w, h, AtrousKernel{f.guides(), {in.rgb(), in.plane(3)},
+                                             {exact.rgb(), exact.plane(3)}, step, p});
+      test::StageRunner gpu(test::kCudaFast);
+      gpu.run(AtrousIteration<SvgfFast, NormalPowerFixed<7>>{gpu.packed_guides(f),
+                                                             gpu.packed(std::as_const(in)),
+                                                             gpu.packed(fast), step, p},
+              w, h, "fast atrous");
+      worst_atrous = std::max(
+          worst_atrous, worst_relative(fast.data(), exact.data(),
+                                       label("fast atrous", s, {}, ", step " + std::to_string(step))));
     }
     {
-      Arena a(w, h, 24);
       Random r(83u + static_cast<uint32_t>(w));
-      const size_t n = a.pixels();
-      const VarianceKernel k = random_variance_kernel(a, r, 0.7, 0.05f);
-      cuda::DeviceArray<float> device(a.host().data(), a.host().size());
-      const VarianceKernel on_device =
-          to_device(k, Mapper{a.host().data(), device.get()}, a.host().size() * sizeof(float));
-      cuda::DeviceArray<Packed4> packed_out(n), guides(n);
-      const PackedGuides g = packed_guides_on_device(on_device.guides, guides.get());
-      cuda::run(VarianceEstimate<SvgfFast, NormalPowerFixed<7>>{
-                    g, on_device.accumulated, on_device.moment1, on_device.moment2,
-                    on_device.history, PackedIllumVar<Packed4>(packed_out.get()), k.params},
-                w, h, {}, "fast variance");
-      unpack_on_device(packed_out.get(), on_device.out, w, h);
-      cpu::for_each_pixel(w, h, k);
-      const std::vector<float> gpu = device.to_host();
-      const size_t out_at = static_cast<size_t>(k.out.color.r - a.host().data());
-      const std::vector<float> fast(gpu.begin() + out_at, gpu.begin() + out_at + 4 * n);
-      const std::vector<float> exact(a.host().begin() + out_at, a.host().begin() + out_at + 4 * n);
-      worst_variance =
-          std::max(worst_variance, worst_relative(fast, exact, label("fast variance", s, {})));
+      const Frame f = random_guides_frame(r, w, h);
+      Image accumulated(w, h, 4), moments(w, h, 2), history(w, h, 1);
+      Image exact(w, h, 4), fast(w, h, 4);
+      r.fill(accumulated.plane(0), 3 * n, 0.f, 2.f);
+      r.fill(accumulated.plane(3), n, 0.f, 0.3f);
+      for (size_t i = 0; i < n; ++i) {  // E[l^2] >= E[l]^2 + 0.05; 70% young history
+        moments.plane(0)[i] = r.uniform(0.f, 1.f);
+        moments.plane(1)[i] = moments.plane(0)[i] * moments.plane(0)[i] + r.uniform(0.05f, 0.5f);
+        history.plane(0)[i] =
+            r.chance(0.7) ? std::floor(r.uniform(1.f, 4.f)) : r.uniform(4.f, 32.f);
+      }
+      const SvgfParams p;
+      cpu::for_each_pixel(w, h, VarianceKernel{f.guides(), {accumulated.rgb(), accumulated.plane(3)},
+                                               moments.plane(0), moments.plane(1),
+                                               history.plane(0), {exact.rgb(), exact.plane(3)}, p});
+      test::StageRunner gpu(test::kCudaFast);
+      gpu.run(VarianceEstimate<SvgfFast, NormalPowerFixed<7>>{
+                  gpu.packed_guides(f), gpu.illum_var(std::as_const(accumulated)),
+                  gpu.plane(std::as_const(moments), 0), gpu.plane(std::as_const(moments), 1),
+                  gpu.plane(std::as_const(history)), gpu.packed(fast), p},
+              w, h, "fast variance");
+      worst_variance = std::max(worst_variance,
+                                worst_relative(fast.data(), exact.data(), label("fast variance", s, {})));
     }
   }
   std::printf("fast stages vs exact, worst relative difference: atrous %.3g, variance %.3g "
-              "(tolerance %.0e)\n", worst_atrous, worst_variance, kFastStageTolerance);
+              "(tolerance %.0e)\n", worst_atrous, worst_variance, test::kFastTolerance);
 }

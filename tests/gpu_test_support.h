@@ -1,11 +1,8 @@
 #pragma once
 // Support for svgf_gpu_tests: run options, fixture discovery, a tally of what was compared, and
-// the "arena" that lets one kernel struct run on both sides. An arena is one host allocation
-// holding every plane a stage touches, mirrored by one device allocation of the same layout;
-// a kernel built with host pointers is translated to device pointers by offset, so the CPU and
-// the GPU run the same struct on the same bytes (compiled by nvcc: cuda::run is the generic
-// launcher), and the whole arena is compared afterwards
-// (outputs, and inputs that must stay untouched).
+// the "arena": one host allocation holding every plane a stage touches, named by region, which
+// the StageRunner of tests/test_device.h mirrors on the device, so the CPU and the GPU run the
+// same kernel struct on the same bytes and the whole arena is compared afterwards.
 #include <cstdint>
 #include <cstring>
 #include <random>
@@ -22,6 +19,7 @@
 #include "kernels_cuda/cuda_launch.cuh"
 #include "kernels_cuda/device_array.h"
 #include "methods/svgf/pipeline.h"
+#include "test_device.h"
 #include "test_support.h"
 
 namespace svgf::gpu_test {
@@ -81,6 +79,15 @@ class Arena {
   const std::vector<float>& host() const { return host_; }
   const std::vector<Region>& regions() const { return regions_; }
 
+  int planes_used() const { return static_cast<int>(used_ / pixels()); }
+  // "region[k]" for each plane in use, for failure messages.
+  std::vector<std::string> plane_names() const {
+    std::vector<std::string> names;
+    for (const Region& r : regions_)
+      for (int k = 0; k < r.channels; ++k) names.push_back(r.name + "[" + std::to_string(k) + "]");
+    return names;
+  }
+
   float* planes(const std::string& name, int channels, bool bytes = false) {
     const size_t offset = used_;
     used_ += static_cast<size_t>(channels) * pixels();
@@ -120,89 +127,19 @@ class Arena {
   size_t used_ = 0;
 };
 
-// The host arena and its device copy.
-struct Mapper {
-  const float* host;
-  float* device;
-};
-
-// A kernel built with arena host pointers, with every pointer into the arena moved to the same
-// offset in the device copy. Kernels are trivially copyable structs of views and parameters, so
-// this works on their bytes for any kernel type (no per-kernel list to keep): each 8-byte
-// aligned word holding an address inside the host arena is a pointer into it. A float or int
-// field would have to spell a heap address bit for bit to be mistaken for one.
-template <class K>
-K to_device(const K& kernel, const Mapper& m, size_t arena_bytes) {
-  static_assert(std::is_trivially_copyable_v<K>, "kernels are plain structs");
-  K out = kernel;
-  unsigned char* bytes = reinterpret_cast<unsigned char*>(&out);
-  const auto lo = reinterpret_cast<uintptr_t>(m.host);
-  for (size_t at = 0; at + sizeof(uintptr_t) <= sizeof(K); at += alignof(void*)) {
-    uintptr_t word;
-    std::memcpy(&word, bytes + at, sizeof word);
-    if (word >= lo && word < lo + arena_bytes) {
-      word = reinterpret_cast<uintptr_t>(m.device) + (word - lo);
-      std::memcpy(bytes + at, &word, sizeof word);
-    }
-  }
-  return out;
-}
-
-// Bitwise comparison of two arena images, region by region, with the first differing pixels.
-inline void require_same_arena(const Arena& arena, const std::vector<float>& cpu,
-                               const std::vector<float>& gpu, const std::string& what) {
-  REQUIRE(cpu.size() == gpu.size());
-  if (std::memcmp(cpu.data(), gpu.data(), cpu.size() * sizeof(float)) == 0) return;
-  const int w = arena.width(), h = arena.height();
-  const size_t n = arena.pixels();
-  for (const Arena::Region& r : arena.regions()) {
-    const size_t count = static_cast<size_t>(r.channels) * n;
-    if (std::memcmp(cpu.data() + r.offset, gpu.data() + r.offset, count * sizeof(float)) == 0)
-      continue;
-    if (r.bytes) {  // interleaved RGB8 at the region's start
-      const auto* a = reinterpret_cast<const uint8_t*>(cpu.data() + r.offset);
-      const auto* b = reinterpret_cast<const uint8_t*>(gpu.data() + r.offset);
-      size_t bad = 0;
-      std::ostringstream msg;
-      for (size_t i = 0; i < 3 * n; ++i)
-        if (a[i] != b[i] && bad++ < 5)
-          msg << "  (" << (i / 3) % w << "," << (i / 3) / w << ") channel " << i % 3 << ": "
-              << int(a[i]) << " vs " << int(b[i]) << "\n";
-      INFO(what << ": " << r.name << ": " << bad << " differing bytes (CPU vs CUDA)\n"
-                << msg.str());
-      REQUIRE(bad == 0);
-      continue;
-    }
-    Image a(w, h, r.channels), b(w, h, r.channels);
-    std::memcpy(a.data().data(), cpu.data() + r.offset, count * sizeof(float));
-    std::memcpy(b.data().data(), gpu.data() + r.offset, count * sizeof(float));
-    test::require_identical(a, b, what + ": " + r.name + " (CPU vs CUDA)");
-  }
-  FAIL(what << ": arenas differ outside every named region");
-}
-
 // Runs `kernel` (built with arena host pointers) on the CPU over the arena and on the GPU over
-// a device copy of the arena as it was before, then compares the two arenas bitwise.
+// a device copy of the arena as it was before, and requires every value of the two arenas to be
+// identical (outputs, and inputs that must stay untouched): tests/test_device.h's StageRunner
+// on CUDA exact.
 template <class K>
 void check_stage(Arena& arena, const K& kernel, const std::string& what,
                  cuda::LaunchShape shape = {}) {
-  const int w = arena.width(), h = arena.height();
-  cuda::DeviceArray<float> device(arena.host().data(), arena.host().size());
-  const K on_device = to_device(kernel, Mapper{arena.host().data(), device.get()},
-                                arena.host().size() * sizeof(float));
-  int64_t cpu_count = 0, gpu_count = 0;
-  if constexpr (std::is_same_v<decltype(kernel(0, 0)), bool>) {
-    cpu_count = cpu::count_pixels(w, h, kernel);
-  } else {
-    cpu::for_each_pixel(w, h, kernel);
-  }
-  gpu_count = cuda::run(on_device, w, h, shape, what.c_str());
-  const std::vector<float> gpu = device.to_host();
-  require_same_arena(arena, arena.host(), gpu, what);
-  INFO(what);
-  REQUIRE(cpu_count == gpu_count);
+  test::StageRunner runner(test::kCudaExact);
+  runner.words(arena.host().data(), arena.planes_used(), arena.width(), arena.height(),
+               arena.plane_names());
+  runner.run(runner.on_device(kernel), arena.width(), arena.height(), what, shape);
   tally().stage_runs += 1;
-  tally().stage_values += static_cast<int64_t>(arena.host().size());
+  tally().stage_values += runner.values_compared();
 }
 
 }  // namespace svgf::gpu_test

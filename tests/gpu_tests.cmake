@@ -10,7 +10,8 @@ if(TARGET svgf_cuda)
   target_link_libraries(svgf_gpu_tests PRIVATE
     Catch2::Catch2 svgf_core svgf_cpu svgf_pipeline svgf_cuda svgf_io svgf_metrics)
   target_include_directories(svgf_gpu_tests PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
-  target_compile_definitions(svgf_gpu_tests PRIVATE SVGF_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+  target_compile_definitions(svgf_gpu_tests PRIVATE SVGF_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+    SVGF_HAVE_CUDA=1)
   add_test(NAME svgf_gpu_tests COMMAND svgf_gpu_tests)
   set_tests_properties(svgf_gpu_tests PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 900)
 endif()

@@ -41,7 +41,7 @@ cv::Mat sep_filter(const cv::Mat& src, const cv::Mat& k) {
 }
 
 // One a-trous iteration at 2^level through one driver, against OpenCV.
-void check_atrous_level(Backend backend, Driver driver, const Frame& frame, const Image& in,
+void check_atrous_level(const TestDevice& device, Driver driver, const Frame& frame, const Image& in,
                         int level, Coverage& coverage) {
   const int w = in.width(), h = in.height(), step = 1 << level;
   // phi_color = phi_depth = inf: |difference| / inf = 0, no luminance or depth term;
@@ -52,18 +52,17 @@ void check_atrous_level(Backend backend, Driver driver, const Frame& frame, cons
   p.phi_depth = std::numeric_limits<float>::infinity();
   p.phi_normal = 0.f;
   Image out(w, h, 4, -1.f);
-  StageRunner r(backend);
+  StageRunner r(device);
   const AtrousKernel kernel{r.guides(frame), r.illum_var(in), r.illum_var(out), step, p};
   if (driver == Driver::Rows)
-    r.run_rows(kernel, w, h);
+    run_rows(r, kernel, w, h);
   else
     r.run(kernel, w, h);
-  r.fetch(out);
 
   const cv::Mat k = b3_dilated(step, false), k2 = b3_dilated(step, true);
   const cv::Mat norm = sep_filter(cv::Mat::ones(h, w, CV_64F), k);  // weight inside the image
   const cv::Mat norm2 = norm.mul(norm);
-  PlaneCheck check("atrous level " + std::to_string(level) + " (" + driver_name(backend, driver) +
+  PlaneCheck check("atrous level " + std::to_string(level) + " (" + driver_name(device, driver) +
                        ")",
                    w, h, 2 * step);
   for (int c = 0; c < 4; ++c) {
@@ -80,7 +79,7 @@ void check_atrous_level(Backend backend, Driver driver, const Frame& frame, cons
   coverage.add(check);
 }
 
-void atrous_unit_weights(Backend backend) {
+void atrous_unit_weights(const TestDevice& device) {
   Coverage coverage;
   uint32_t seed = 100;
   for (const Size2 s : check_sizes()) {
@@ -90,9 +89,9 @@ void atrous_unit_weights(Backend backend) {
     const std::vector<float> var = uniform_values(in.pixel_count(), 1e-3f, 1.f, ++seed);
     std::copy(var.begin(), var.end(), in.plane(3));
     // Every level the pipeline runs (iterations = 4) and the paper's fifth.
-    for (const Driver driver : drivers(backend))
+    for (const Driver driver : drivers(device))
       for (int level = 0; level <= 4; ++level)
-        check_atrous_level(backend, driver, frame, in, level, coverage);
+        check_atrous_level(device, driver, frame, in, level, coverage);
   }
   // Fixture images as the color (random guides: the weights are 1 whatever they hold).
   for (const Frame& f : fixture_frames()) {
@@ -101,14 +100,14 @@ void atrous_unit_weights(Backend backend) {
     std::copy(f.color.data().begin(), f.color.data().end(), in.plane(0));
     const std::vector<float> var = uniform_values(in.pixel_count(), 1e-3f, 1.f, ++seed);
     std::copy(var.begin(), var.end(), in.plane(3));
-    for (const Driver driver : drivers(backend))
+    for (const Driver driver : drivers(device))
       for (int level = 0; level <= 4; ++level)
-        check_atrous_level(backend, driver, frame, in, level, coverage);
+        check_atrous_level(device, driver, frame, in, level, coverage);
   }
   coverage.require();
 }
 
-void prefilter_equals_gaussian(Backend backend) {
+void prefilter_equals_gaussian(const TestDevice& device) {
   // OpenCV's 3x3 Gaussian: for ksize 3 and sigma 0 it uses its fixed table (1/4, 1/2, 1/4),
   // which is the paper's prefilter. Premise of the check, about OpenCV only.
   const cv::Mat g = cv::getGaussianKernel(3, 0, CV_64F);
@@ -123,10 +122,9 @@ void prefilter_equals_gaussian(Backend backend) {
     const Frame frame = random_frame(w, h, ++seed);
     Image var(w, h, 1), out(w, h, 1, -1.f);
     fill_uniform(var, 1e-3f, 2.f, ++seed);
-    StageRunner r(backend);
+    StageRunner r(device);
     r.run(PrefilterProbe{r.guides(frame), r.plane(static_cast<const Image&>(var)), r.plane(out)},
           w, h);
-    r.fetch(out);
 
     const cv::Mat v = plane_mat(var, 0), ones = cv::Mat::ones(h, w, CV_64F);
     cv::Mat blurred, norm;
@@ -138,7 +136,7 @@ void prefilter_equals_gaussian(Backend backend) {
     const cv::Mat want_sep = sep_filter(v, k) / sep_filter(ones, k);
     REQUIRE(cv::norm(want, want_sep, cv::NORM_INF) <= 1e-15);
 
-    PlaneCheck check(std::string("variance prefilter (") + backend_name(backend) + ")", w, h, 1);
+    PlaneCheck check(std::string("variance prefilter (") + device.name() + ")", w, h, 1);
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) {
         const double wv = want.at<double>(y, x);

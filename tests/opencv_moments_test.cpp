@@ -49,12 +49,12 @@ double running_mean_tol(int frames) {
 
 // ------------------------------------------------------------------ check 5
 
-void check_luminance(Backend backend, const Image& illum, uint32_t seed, Coverage& coverage) {
+void check_luminance(const TestDevice& device, const Image& illum, uint32_t seed, Coverage& coverage) {
   const int w = illum.width(), h = illum.height();
   const Frame frame = consistent_frame(w, h, seed);
   Image acc(w, h, 4, -1.f), moments(w, h, 2, -1.f), length(w, h, 1, -1.f);
 
-  StageRunner r(backend);
+  StageRunner r(device);
   ReprojectKernel k;
   k.guides = r.guides(frame);
   k.prev_guides = k.guides;
@@ -66,10 +66,9 @@ void check_luminance(Backend backend, const Image& illum, uint32_t seed, Coverag
   k.moment2 = r.plane(moments, 1);
   k.history = r.plane(length);
   r.run(k, w, h);
-  r.fetch(moments);
 
   const cv::Mat l = luminance_cv(illum);
-  PlaneCheck check(std::string("luminance (") + backend_name(backend) + ")", w, h, 1);
+  PlaneCheck check(std::string("luminance (") + device.name() + ")", w, h, 1);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const double v = l.at<double>(y, x);
@@ -80,15 +79,15 @@ void check_luminance(Backend backend, const Image& illum, uint32_t seed, Coverag
   coverage.add(check);
 }
 
-void luminance_equals_transform(Backend backend) {
+void luminance_equals_transform(const TestDevice& device) {
   Coverage coverage;
   uint32_t seed = 500;
   for (const Size2 s : check_sizes()) {
     Image illum(s.w, s.h, 3);
     fill_uniform(illum, 0.05f, 10.f, ++seed);  // HDR
-    check_luminance(backend, illum, ++seed, coverage);
+    check_luminance(device, illum, ++seed, coverage);
   }
-  for (const Frame& f : fixture_frames()) check_luminance(backend, f.color, ++seed, coverage);
+  for (const Frame& f : fixture_frames()) check_luminance(device, f.color, ++seed, coverage);
   coverage.require();
 }
 
@@ -96,7 +95,7 @@ void luminance_equals_transform(Backend backend) {
 
 constexpr int kStaticFrames = 12;
 
-void static_sequence_equals_meanstddev(Backend backend) {
+void static_sequence_equals_meanstddev(const TestDevice& device) {
   Coverage coverage;
   uint32_t seed = 600;
   for (const Size2 s : check_sizes()) {
@@ -116,7 +115,7 @@ void static_sequence_equals_meanstddev(Backend backend) {
     Image acc(w, h, 4), moments(w, h, 2), length(w, h, 1);
     for (int f = 0; f < kStaticFrames; ++f) {
       const Image prev_acc = acc, prev_moments = moments, prev_length = length;
-      StageRunner r(backend);
+      StageRunner r(device);
       ReprojectKernel k;
       k.guides = r.guides(frame);
       k.prev_guides = k.guides;
@@ -132,15 +131,12 @@ void static_sequence_equals_meanstddev(Backend backend) {
       k.history = r.plane(length);
       k.params = p;
       r.run(k, w, h);
-      r.fetch(acc);
-      r.fetch(moments);
-      r.fetch(length);
     }
 
     std::vector<cv::Mat> lum;
     for (const Image& im : illum) lum.push_back(luminance_cv(im));
     const double t_mean = running_mean_tol(kStaticFrames);
-    PlaneCheck check(std::string("static sequence moments (") + backend_name(backend) + ")", w,
+    PlaneCheck check(std::string("static sequence moments (") + device.name() + ")", w,
                      h, 1);
     cv::Mat colors(kStaticFrames, 1, CV_64FC3), lums(kStaticFrames, 1, CV_64F);
     for (int y = 0; y < h; ++y)
@@ -175,7 +171,7 @@ void static_sequence_equals_meanstddev(Backend backend) {
 // ------------------------------------------------------------------ check 4b
 
 // The spatial estimate through one driver, against OpenCV.
-void check_spatial_variance(Backend backend, Driver driver, const Frame& frame,
+void check_spatial_variance(const TestDevice& device, Driver driver, const Frame& frame,
                             const Image& acc, const Image& moments, const Image& history,
                             Coverage& coverage) {
   const int w = acc.width(), h = acc.height();
@@ -186,14 +182,13 @@ void check_spatial_variance(Backend backend, Driver driver, const Frame& frame,
   p.spatial_variance_phi_depth = std::numeric_limits<float>::infinity();
   p.phi_normal = 0.f;
   Image out(w, h, 4, -1.f);
-  StageRunner r(backend);
+  StageRunner r(device);
   const VarianceKernel kernel{r.guides(frame), r.illum_var(acc), r.plane(moments, 0),
                               r.plane(moments, 1), r.plane(history), r.illum_var(out), p};
   if (driver == Driver::Rows)
-    r.run_rows(kernel, w, h);
+    run_rows(r, kernel, w, h);
   else
     r.run(kernel, w, h);
-  r.fetch(out);
 
   const int radius = p.spatial_variance_radius;
   const cv::Size box(2 * radius + 1, 2 * radius + 1);
@@ -211,7 +206,7 @@ void check_spatial_variance(Backend backend, Driver driver, const Frame& frame,
   // Color: 49 exact products, 48 sums, one division: gamma_49 -> 50u relative.
   // Variance: sums of m1 (49u) and of the rounded squares (50u); m2 - m1^2 <= 150u * m2 as
   // m1^2 <= m2; the boost 4/h and its product add 2u.
-  PlaneCheck check("spatial variance (" + driver_name(backend, driver) + ")", w, h, radius);
+  PlaneCheck check("spatial variance (" + driver_name(device, driver) + ")", w, h, radius);
   for (int c = 0; c < 3; ++c) {
     const cv::Mat want = box_sum(plane_mat(acc, c)) / count;
     for (int y = 0; y < h; ++y)
@@ -231,7 +226,7 @@ void check_spatial_variance(Backend backend, Driver driver, const Frame& frame,
   coverage.add(check);
 }
 
-void spatial_variance_equals_box(Backend backend) {
+void spatial_variance_equals_box(const TestDevice& device) {
   Coverage coverage;
   uint32_t seed = 700;
   for (const Size2 s : check_sizes()) {
@@ -247,8 +242,8 @@ void spatial_variance_equals_box(Backend backend) {
       moments.plane(1)[i] = m1[i] * m1[i];  // a first frame's moments: E[l^2] = l^2
       history.plane(0)[i] = static_cast<float>(young(rng));
     }
-    for (const Driver driver : drivers(backend))
-      check_spatial_variance(backend, driver, frame, acc, moments, history, coverage);
+    for (const Driver driver : drivers(device))
+      check_spatial_variance(device, driver, frame, acc, moments, history, coverage);
   }
   coverage.require();
 }

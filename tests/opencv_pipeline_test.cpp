@@ -97,11 +97,10 @@ Scores score(const Image& denoised, const Frame& f, const SvgfParams& p) {
   return s;
 }
 
-// Denoises `seq` on `backend` and checks every frame past the warm-up that has a reference.
+// Denoises `seq` on `device` and checks every frame past the warm-up that has a reference.
 // Returns the number of frames compared.
-int check_sequence(const Sequence& seq, svgf::Backend backend) {
-  DenoiserConfig config;
-  config.backend = backend;
+int check_sequence(const Sequence& seq, const TestDevice& device) {
+  const DenoiserConfig config = device.config(DenoiserConfig());
   auto denoiser = make_denoiser(config);
   const auto t0 = std::chrono::steady_clock::now();
   int since_reset = 0, compared = 0;
@@ -118,7 +117,7 @@ int check_sequence(const Sequence& seq, svgf::Backend backend) {
     ++since_reset;
     if (since_reset <= kWarmup || !f.has_reference()) continue;
     const Scores s = score(out, f, config.svgf);
-    INFO(seq.name << " (" << to_string(backend) << ") frame " << k << ": svgf " << s.svgf
+    INFO(seq.name << " (" << device.name() << ") frame " << k << ": svgf " << s.svgf
                   << " dB, GaussianBlur " << s.gaussian << " dB, bilateralFilter "
                   << s.bilateral << " dB");
     // CHECK, not REQUIRE: every losing frame is reported.
@@ -130,7 +129,7 @@ int check_sequence(const Sequence& seq, svgf::Backend backend) {
   }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::cout << "opencv check 8: " << seq.name << " (" << to_string(backend) << "), " << compared
+  std::cout << "opencv check 8: " << seq.name << " (" << device.name() << "), " << compared
             << " frames compared, last: svgf " << last.svgf << " dB, GaussianBlur "
             << last.gaussian << " dB, bilateralFilter " << last.bilateral
             << " dB; smallest margin " << worst_margin << " dB; " << seconds << " s\n";
@@ -152,14 +151,14 @@ Sequence synthetic(int w, int h, int square, int speed, uint32_t seed) {
   return s;
 }
 
-void synthetic_sequences(svgf::Backend backend) {
+void synthetic_sequences(const TestDevice& device) {
   for (const Sequence& s : {synthetic(64, 48, 14, 2, 1), synthetic(129, 67, 20, 3, 2)}) {
-    const int compared = check_sequence(s, backend);
+    const int compared = check_sequence(s, device);
     REQUIRE(compared == s.frames - kWarmup);
   }
 }
 
-void fixture_sequences(svgf::Backend backend) {
+void fixture_sequences(const TestDevice& device) {
   const FixtureScan scan = scan_fixtures();
   if (scan.folders == 0) {
     WARN("no fixture sequences under " << scan.root
@@ -183,7 +182,7 @@ void fixture_sequences(svgf::Backend backend) {
     s.frames = std::min(seq.size(), kMaxFixtureFrames);
     s.read = [&seq](int k) { return seq.read(k); };
     s.is_cut = [&seq](int k) { return seq.is_camera_cut(k); };
-    const int compared = check_sequence(s, backend);
+    const int compared = check_sequence(s, device);
     INFO(s.name << ": a fixture needs more than " << kWarmup << " frames with a reference");
     REQUIRE(compared > 0);
   }

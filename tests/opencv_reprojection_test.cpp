@@ -86,7 +86,7 @@ double inside_weight(double px, double py, int w, int h) {
 
 // One reprojection against remap. `color`, when given, is the color history (a fixture image);
 // otherwise it is made up as described below.
-void check_reprojection(Backend backend, bool grid_motion, int w, int h, const Image* color,
+void check_reprojection(const TestDevice& device, bool grid_motion, int w, int h, const Image* color,
                         uint32_t seed, Coverage& coverage) {
   const size_t n = static_cast<size_t>(w) * h;
   Frame frame = consistent_frame(w, h, ++seed);
@@ -129,7 +129,7 @@ void check_reprojection(Backend backend, bool grid_motion, int w, int h, const I
   p.moments_alpha = 0.f;
   p.history_cap = 1 << 25;
   Image acc(w, h, 4, -1.f), moments(w, h, 2, -1.f), length(w, h, 1, -1.f);
-  StageRunner r(backend);
+  StageRunner r(device);
   ReprojectKernel k;
   k.guides = r.guides(frame);
   k.prev_guides = r.guides(prev);
@@ -145,9 +145,6 @@ void check_reprojection(Backend backend, bool grid_motion, int w, int h, const I
   k.history = r.plane(length);
   k.params = p;
   r.run(k, w, h);
-  r.fetch(acc);
-  r.fetch(moments);
-  r.fetch(length);
 
   // Maps: the very float coordinates the stage computes, x + motion.
   cv::Mat map_x(h, w, CV_32F), map_y(h, w, CV_32F);
@@ -170,7 +167,7 @@ void check_reprojection(Backend backend, bool grid_motion, int w, int h, const I
 
   PlaneCheck check(std::string(grid_motion ? "reproject, 1/32-grid motion (" :
                                              "reproject, arbitrary motion (") +
-                       backend_name(backend) + ")",
+                       device.name() + ")",
                    w, h, static_cast<int>(std::ceil(kMaxMotion)) + 1);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
@@ -200,24 +197,24 @@ void check_reprojection(Backend backend, bool grid_motion, int w, int h, const I
   coverage.add(check);
 }
 
-void reprojection_equals_remap(Backend backend, bool grid_motion) {
+void reprojection_equals_remap(const TestDevice& device, bool grid_motion) {
   Coverage coverage;
   uint32_t seed = grid_motion ? 300 : 400;
   for (const Size2 s : check_sizes()) {
-    check_reprojection(backend, grid_motion, s.w, s.h, nullptr, seed, coverage);
+    check_reprojection(device, grid_motion, s.w, s.h, nullptr, seed, coverage);
     seed += 100;
   }
   // Fixture colors: exact check on the 1/32 grid (their sharp edges make the slope bound loose).
   if (grid_motion)
     for (const Frame& f : fixture_frames()) {
-      check_reprojection(backend, true, f.width(), f.height(), &f.color, seed, coverage);
+      check_reprojection(device, true, f.width(), f.height(), &f.color, seed, coverage);
       seed += 100;
     }
   coverage.require();
 }
 
-void reprojection_grid(Backend b) { reprojection_equals_remap(b, true); }
-void reprojection_any(Backend b) { reprojection_equals_remap(b, false); }
+void reprojection_grid(const TestDevice& b) { reprojection_equals_remap(b, true); }
+void reprojection_any(const TestDevice& b) { reprojection_equals_remap(b, false); }
 
 }  // namespace
 

@@ -1,7 +1,8 @@
 #pragma once
 // Shared pieces of the OpenCV cross-checks (docs/opencv-checks.md): Image <-> cv::Mat
 // conversion, a per-pixel comparison that tallies edge and interior pixels separately, seeded
-// random guides, and the backend runners that put one stage kernel on the CPU or on the GPU.
+// random guides, and the drivers a check runs a stage through (tests/test_device.h runs it on
+// each backend).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -27,13 +28,7 @@
 #include "kernels_cpu/svgf_rows.h"
 #include "kernels_cpu/parallel_for.h"
 #include "opencv_probe.h"
-#if defined(SVGF_HAVE_CUDA)
-#include "kernels_cuda/cuda_denoisers.h"
-#include "kernels_cuda/device_array.h"
-#endif
-#if defined(__CUDACC__)
-#include "kernels_cuda/cuda_launch.cuh"
-#endif
+#include "test_device.h"
 
 namespace svgf::cvtest {
 
@@ -248,155 +243,32 @@ inline const std::vector<Frame>& fixture_frames() {
 
 // ---------------------------------------------------------------- backends
 
-// Stage checks take the project's own backend enum (core/denoiser.h): Cpu or Cuda.
-inline const char* backend_name(Backend b) { return to_string(b); }
+// Each check is one body run on the CPU and on CUDA exact (tests/test_device.h); the checks are
+// of exact arithmetic, and fast mode is held to exact mode's results by the stage tests.
+using test::StageRunner;
+using test::TestDevice;
 
-// The CPU always runs. The CUDA variant runs when the binary has the backend and a device is
-// present; otherwise it prints a line that the ctest entry svgf_opencv_tests:cuda matches as
-// a skip (SKIP_REGULAR_EXPRESSION), so a missing GPU shows as Skipped, never as a pass.
-inline bool backend_ready_or_skip(Backend b) {
-  if (b == Backend::Cpu) return true;
-  std::string why;
-#if defined(SVGF_HAVE_CUDA)
-  if (cuda::device_available(&why)) return true;
-#else
-  why = "this test binary was built without the CUDA backend (target svgf_cuda absent)";
-#endif
-  WARN("SKIPPED: CUDA variant not run: " << why);
-  return false;
-}
-
-// How a wide stage is driven: the per-pixel kernel (cpu::for_each_pixel, or the CUDA launch) or
-// the CPU engine's row drivers. The CPU variant of a check runs both, the CUDA variant the one.
+// How a wide stage is driven: the per-pixel kernel (the CPU loop, or the CUDA launch) or the CPU
+// engine's row drivers. The CPU variant of a check runs both, the CUDA variant the one.
 enum class Driver { PerPixel, Rows };
-inline std::vector<Driver> drivers(Backend b) {
-  if (b == Backend::Cpu) return {Driver::PerPixel, Driver::Rows};
+inline std::vector<Driver> drivers(const TestDevice& d) {
+  if (!d.cuda()) return {Driver::PerPixel, Driver::Rows};
   return {Driver::PerPixel};
 }
-inline std::string driver_name(Backend b, Driver d) {
-  return std::string(to_string(b)) + (d == Driver::Rows ? " rows" : "");
+inline std::string driver_name(const TestDevice& d, Driver driver) {
+  return d.name() + (driver == Driver::Rows ? " rows" : "");
 }
-
-
-// Where one stage's buffers live: host memory for the CPU, device copies for CUDA. Map every
-// host image the kernel reads or writes (mapping uploads its current contents), build the kernel
-// from the mapped pointers, run() it, then fetch() each output back into its host image.
-class StageRunner {
- public:
-  explicit StageRunner(Backend b) : backend_(b) {}
-  StageRunner(const StageRunner&) = delete;
-  StageRunner& operator=(const StageRunner&) = delete;
-
-  Backend backend() const { return backend_; }
-
-  // Channel c of `im` on the backend (the planes of an Image are contiguous).
-  float* plane(Image& im, int c = 0) {
-    return map(im.data().data(), im.data().size()) + c * im.pixel_count();
-  }
-  const float* plane(const Image& im, int c = 0) {
-    return map(im.data().data(), im.data().size()) + c * im.pixel_count();
-  }
-  RgbView rgb(Image& im, int first = 0) {
-    return {plane(im, first), plane(im, first + 1), plane(im, first + 2)};
-  }
-  ConstRgbView rgb(const Image& im, int first = 0) {
-    return {plane(im, first), plane(im, first + 1), plane(im, first + 2)};
-  }
-  // Channels 0-2 color, 3 variance.
-  IllumVarView illum_var(Image& im) { return {rgb(im), plane(im, 3)}; }
-  ConstIllumVarView illum_var(const Image& im) { return {rgb(im), plane(im, 3)}; }
-
-  GuideView guides(const Frame& f) {
-    GuideView g;
-    g.width = f.width();
-    g.height = f.height();
-    g.depth = plane(f.depth);
-    g.depth_dx = plane(f.depth_gradient, 0);
-    g.depth_dy = plane(f.depth_gradient, 1);
-    g.normal = rgb(f.normal);
-    g.mesh_id = map(f.mesh_id.data(), f.mesh_id.size());
-    g.motion_x = plane(f.motion, 0);
-    g.motion_y = plane(f.motion, 1);
-    return g;
-  }
-
-  template <class Kernel>
-  void run(const Kernel& kernel, int w, int h) {
-    if (backend_ == Backend::Cpu) {
-      cpu::for_each_pixel(w, h, kernel);
-      return;
-    }
-#if defined(__CUDACC__)
-    cuda::run(kernel, w, h);  // the generic launcher: this file is compiled by nvcc
-#else
-    FAIL("CUDA stage run in a build without the CUDA backend");
-#endif
-  }
-
-  // The CPU engine runs the two wide stages through its row-vectorized drivers
-  // (kernels_cpu/svgf_rows.h), not the per-pixel loop: checks of those stages run both.
-  // On CUDA this is run().
-  void run_rows(const AtrousKernel& kernel, int w, int h) {
-    if (backend_ == Backend::Cpu) cpu::run_atrous_rows(kernel, w, h);
-    else run(kernel, w, h);
-  }
-  void run_rows(const VarianceKernel& kernel, int w, int h) {
-    if (backend_ == Backend::Cpu) cpu::run_variance_rows(kernel, w, h);
-    else run(kernel, w, h);
-  }
-
-  // Copies an output back to the host (nothing to do on the CPU).
-  void fetch(Image& im) {
-#if defined(SVGF_HAVE_CUDA)
-    if (backend_ == Backend::Cuda) {
-      const auto it = floats_.find(im.data().data());
-      REQUIRE(it != floats_.end());
-      it->second.download(im.data().data(), im.data().size());
-    }
-#else
-    (void)im;
-#endif
-  }
-
- private:
-  // The backend's copy of a host buffer: the buffer itself on the CPU; on CUDA a device array,
-  // uploaded on first use and reused after.
-  template <class T>
-  T* map(T* host, size_t n) {
-#if defined(SVGF_HAVE_CUDA)
-    if (backend_ == Backend::Cuda) {
-      using U = std::remove_const_t<T>;
-      auto& store = storage(static_cast<U*>(nullptr));
-      auto it = store.find(host);
-      if (it == store.end()) it = store.emplace(host, cuda::DeviceArray<U>(host, n)).first;
-      return it->second.get();
-    }
-#endif
-    (void)n;
-    return host;
-  }
-#if defined(SVGF_HAVE_CUDA)
-  std::map<const void*, cuda::DeviceArray<float>>& storage(float*) { return floats_; }
-  std::map<const void*, cuda::DeviceArray<uint32_t>>& storage(uint32_t*) { return ids_; }
-#endif
-
-  Backend backend_;
-#if defined(SVGF_HAVE_CUDA)
-  std::map<const void*, cuda::DeviceArray<float>> floats_;
-  std::map<const void*, cuda::DeviceArray<uint32_t>> ids_;
-#endif
-};
+// The two wide stages through the CPU engine's row-vectorized drivers (kernels_cpu/svgf_rows.h).
+inline void run_rows(StageRunner& r, const AtrousKernel& k, int w, int h) {
+  REQUIRE_FALSE(r.device().cuda());
+  cpu::run_atrous_rows(k, w, h);
+}
+inline void run_rows(StageRunner& r, const VarianceKernel& k, int w, int h) {
+  REQUIRE_FALSE(r.device().cuda());
+  cpu::run_variance_rows(k, w, h);
+}
 
 }  // namespace svgf::cvtest
 
-// Registers a check written as `void f(Backend)` twice. The CPU variant is discovered by ctest
-// one test case at a time; the CUDA variant is hidden ([.cuda]) and runs through the single
-// ctest entry svgf_opencv_tests:cuda, or by hand: svgf_opencv_tests "[cuda]".
-#define SVGF_OPENCV_CHECK(name, tags, function)                           \
-  TEST_CASE(name " - cpu", "[opencv][cpu]" tags) {                        \
-    function(::svgf::Backend::Cpu);                                       \
-  }                                                                       \
-  TEST_CASE(name " - cuda", "[opencv][.cuda]" tags) {                     \
-    if (::svgf::cvtest::backend_ready_or_skip(::svgf::Backend::Cuda))     \
-      function(::svgf::Backend::Cuda);                                    \
-  }
+// Registers a check written as `void f(const TestDevice&)` for the CPU and CUDA exact.
+#define SVGF_OPENCV_CHECK(name, tags, function) SVGF_BACKEND_TEST(name, "[opencv]" tags, function)

@@ -1,1 +1,2 @@
-svgf_add_tests(svgf_pipeline_tests SOURCES svgf_pipeline_test.cpp gaussian_test.cpp LIBS svgf_pipeline svgf_metrics)
+svgf_add_device_tests(svgf_pipeline_tests DENOISERS_ONLY
+  SOURCES svgf_pipeline_test.cpp gaussian_test.cpp LIBS svgf_pipeline svgf_metrics)

@@ -1,63 +1,80 @@
+// Stage 4, the a-trous iterations, on the CPU, CUDA exact and CUDA fast (tests/test_device.h):
+// known answers in double, exact to float rounding, fast to its tolerance. The prefilter and
+// the weight function are also checked alone, on the host.
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
 #include <catch2/catch.hpp>
 
 #include "methods/svgf/atrous.h"
-#include "kernels_cpu/parallel_for.h"
+#include "svgf_flavor_views.h"
+#include "test_device.h"
 #include "test_support.h"
 
 using namespace svgf;
+using svgf::test::TestDevice;
 
 namespace {
 
 struct AtrousRig {
+  test::TestDevice device;
   int w, h;
   Frame frame;
   Image in, out;
   SvgfParams params;
-  AtrousRig(int w_, int h_) : w(w_), h(h_), frame(test::flat_frame(w_, h_)), in(w_, h_, 4), out(w_, h_, 4) {}
+  AtrousRig(const test::TestDevice& d, int w_, int h_)
+      : device(d), w(w_), h(h_), frame(test::flat_frame(w_, h_)), in(w_, h_, 4), out(w_, h_, 4) {}
+  // One iteration as the pipeline runs it, in the device's flavor (exact planes or fast
+  // packed pixels).
   void run(int step) {
-    cpu::for_each_pixel(w, h, AtrousKernel{frame.guides(), {in.rgb(), in.plane(3)},
-                                           {out.rgb(), out.plane(3)}, step, params});
+    test::StageRunner r(device);
+    test::with_flavor(device, [&](auto flavor) {
+      using Flavor = decltype(flavor);
+      Flavor::with_normal_power(params.phi_normal, [&](const auto& power) {
+        using Power = std::decay_t<decltype(power)>;
+        r.run(AtrousIteration<Flavor, Power>{test::filter_guides(flavor, r, frame),
+                                             test::signal(flavor, r, std::as_const(in)),
+                                             test::signal(flavor, r, out), step, params},
+              w, h, "atrous");
+      });
+    });
   }
 };
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-}  // namespace
-
-TEST_CASE("atrous: a constant image stays constant at every step", "[atrous]") {
+void constant_stays_constant(const TestDevice& d) {
   for (int step : {1, 2, 4, 8, 16}) {
-    AtrousRig rig(37, 23);
+    AtrousRig rig(d, 37, 23);
     for (int c = 0; c < 3; ++c) std::fill_n(rig.in.plane(c), 37 * 23, 1.7f);
     std::fill_n(rig.in.plane(3), 37 * 23, 0.01f);
     rig.run(step);
     for (int i = 0; i < 37 * 23; ++i)
-      for (int c = 0; c < 3; ++c) REQUIRE(rig.out.plane(c)[i] == Approx(1.7f).epsilon(3e-7));
+      for (int c = 0; c < 3; ++c) REQUIRE(rig.out.plane(c)[i] == Approx(1.7f).epsilon(d.tolerance(3e-7)));
   }
 }
 
-TEST_CASE("atrous: known answer for the variance, filtered with squared weights", "[atrous]") {
-  AtrousRig rig(15, 15);
+void variance_with_squared_weights(const TestDevice& d) {
+  AtrousRig rig(d, 15, 15);
   rig.params.phi_color = kInf;  // every edge-stopping weight is exactly 1
   rig.params.phi_normal = 0.f;
   test::fill_uniform(rig.in, 0.1f, 1.f, 31);
   std::fill_n(rig.in.plane(3), 15 * 15, 0.5f);
   rig.run(1);
   // sum k^2 = (3/8^2 + 2 (1/4)^2 + 2 (1/16)^2)^2 = 0.2734375^2, sum k = 1: both exact.
-  REQUIRE(rig.out.at(7, 7, 3) == Approx(0.5 * 0.2734375 * 0.2734375).epsilon(1e-6));
+  REQUIRE(rig.out.at(7, 7, 3) == Approx(0.5 * 0.2734375 * 0.2734375).epsilon(d.tolerance(1e-6)));
   // The color is the B3-weighted mean of the 5x5 neighbourhood.
   double expect = 0;
   for (int dy = -2; dy <= 2; ++dy)
     for (int dx = -2; dx <= 2; ++dx)
       expect += double(b3_weight(std::abs(dx))) * b3_weight(std::abs(dy)) * rig.in.at(7 + dx, 7 + dy, 0);
-  REQUIRE(rig.out.at(7, 7, 0) == Approx(expect).epsilon(1e-6));
+  REQUIRE(rig.out.at(7, 7, 0) == Approx(expect).epsilon(d.tolerance(1e-6)));
 }
 
 TEST_CASE("atrous: the variance prefilter is a renormalized 3x3 Gaussian", "[atrous]") {
@@ -76,8 +93,8 @@ TEST_CASE("atrous: the variance prefilter is a renormalized 3x3 Gaussian", "[atr
   REQUIRE(prefiltered_variance(f.guides(), var.plane(0), 0, 0) == Approx(corner).epsilon(1e-6));
 }
 
-TEST_CASE("atrous: a flat noisy region keeps its mean", "[atrous]") {
-  AtrousRig rig(64, 64);
+void flat_region_keeps_mean(const TestDevice& d) {
+  AtrousRig rig(d, 64, 64);
   test::fill_uniform(rig.in, 0.5f, 1.5f, 51);
   std::fill_n(rig.in.plane(3), 64 * 64, 1.f / 12.f);  // the uniform noise's variance
   rig.run(1);
@@ -96,7 +113,6 @@ TEST_CASE("atrous: a flat noisy region keeps its mean", "[atrous]") {
   REQUIRE(var_out < 0.5 * var_in);  // and it did filter
 }
 
-namespace {
 // Two flat regions, left and right of x = 10, that differ in one guide; both colors constant.
 void require_no_bleeding(AtrousRig& rig, float left, float right) {
   for (int y = 0; y < rig.h; ++y)
@@ -113,10 +129,9 @@ void require_no_bleeding(AtrousRig& rig, float left, float right) {
     }
   }
 }
-}  // namespace
 
-TEST_CASE("atrous: weights fall to ~0 across a depth edge", "[atrous]") {
-  AtrousRig rig(20, 8);
+void no_bleeding_across_depth(const TestDevice& d) {
+  AtrousRig rig(d, 20, 8);
   rig.params.phi_color = kInf;  // only the depth term can stop the filter
   for (int y = 0; y < 8; ++y)
     for (int x = 10; x < 20; ++x) rig.frame.depth.at(x, y, 0) = 3.f;
@@ -125,8 +140,8 @@ TEST_CASE("atrous: weights fall to ~0 across a depth edge", "[atrous]") {
   require_no_bleeding(rig, 0.2f, 0.8f);
 }
 
-TEST_CASE("atrous: weights fall to ~0 across a normal edge", "[atrous]") {
-  AtrousRig rig(20, 8);
+void no_bleeding_across_normal(const TestDevice& d) {
+  AtrousRig rig(d, 20, 8);
   rig.params.phi_color = kInf;
   for (int y = 0; y < 8; ++y)
     for (int x = 10; x < 20; ++x) {
@@ -136,14 +151,14 @@ TEST_CASE("atrous: weights fall to ~0 across a normal edge", "[atrous]") {
   require_no_bleeding(rig, 0.2f, 0.8f);
 }
 
-TEST_CASE("atrous: weights fall to ~0 across a luminance edge", "[atrous]") {
-  AtrousRig rig(20, 8);  // same depth and normal everywhere: only luminance separates
+void no_bleeding_across_luminance(const TestDevice& d) {
+  AtrousRig rig(d, 20, 8);  // same depth and normal everywhere: only luminance separates
   // Luminance 0.1 vs 10 with variance 1e-3: |dl| / phi_l = 9.9 / (10 sqrt(1.1e-3)) ~ 30.
   require_no_bleeding(rig, 0.1f, 10.f);
 }
 
-TEST_CASE("atrous: NaN guides drop the tap instead of poisoning the pixel", "[atrous]") {
-  AtrousRig rig(9, 9);
+void nan_guides_drop_the_tap(const TestDevice& d) {
+  AtrousRig rig(d, 9, 9);
   test::fill_uniform(rig.in, 0.1f, 1.f, 61);
   rig.frame.normal.at(5, 4, 0) = std::numeric_limits<float>::quiet_NaN();
   rig.frame.depth.at(3, 4, 0) = std::numeric_limits<float>::quiet_NaN();
@@ -151,7 +166,6 @@ TEST_CASE("atrous: NaN guides drop the tap instead of poisoning the pixel", "[at
   for (float v : rig.out.data()) REQUIRE(std::isfinite(v));
 }
 
-namespace {
 
 // An independent double-precision a-trous iteration (paper Eq. 1-5, Falcor's weights): the
 // reference every parameter is pinned against below. Written from the formulas, not from
@@ -215,16 +229,15 @@ Image reference_atrous(const Frame& f, const Image& in, int step, const SvgfPara
   return out;
 }
 
-}  // namespace
 
-TEST_CASE("atrous: every parameter's role, against a double-precision reference", "[atrous]") {
+void every_parameter_role(const TestDevice& d) {
   // A tilted plane (depth changes by 0.05 and 0.08 per pixel, the gradient says so), normals
   // near +z some of them slightly longer than 1 (as half-float storage leaves them), noisy
   // color and variance. Each parameter set moves one parameter far from its default; a value
   // used in the wrong role, at the wrong step scale or not at all moves the output by far more
   // than the float rounding the tolerance allows.
   const int w = 23, h = 19;
-  AtrousRig rig(w, h);
+  AtrousRig rig(d, w, h);
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> u(-1.f, 1.f);
   for (int y = 0; y < h; ++y)
@@ -266,12 +279,11 @@ TEST_CASE("atrous: every parameter's role, against a double-precision reference"
         worst = std::max(worst, std::fabs(double(rig.out.data()[i]) - want.data()[i]) /
                                     std::max(1e-3, std::fabs(double(want.data()[i]))));
       INFO(name << ", step " << step << ": worst relative difference " << worst);
-      REQUIRE(worst < 2e-5);
+      REQUIRE(worst < d.tolerance(2e-5));
     }
 }
 
-TEST_CASE("atrous: the normal weight is capped at 1 for normals a little longer than 1",
-          "[atrous]") {
+TEST_CASE("atrous: the normal weight is capped at 1 for normals a little longer than 1", "[atrous]") {
   // |n| = 1.0002 (half-float storage): uncapped, (n.n)^128 = 1.05 would weigh a neighbour above
   // the centre's own edge-stopping weight of 1.
   const Vec3 n = make_vec3(0.f, 0.f, 1.0002f);
@@ -279,3 +291,21 @@ TEST_CASE("atrous: the normal weight is capped at 1 for normals a little longer 
   REQUIRE(edge_stopping_weight(c, q, 1.f, 128.f, 1.f) == 1.f);
   REQUIRE(edge_stopping_weight(c, q, 1.f, 100.f, 1.f) == 1.f);  // the det_pow path too
 }
+
+}  // namespace
+
+SVGF_DEVICE_TEST("atrous: a constant image stays constant at every step",
+                 "[atrous]", constant_stays_constant)
+SVGF_DEVICE_TEST("atrous: known answer for the variance, filtered with squared weights",
+                 "[atrous]", variance_with_squared_weights)
+SVGF_DEVICE_TEST("atrous: a flat noisy region keeps its mean", "[atrous]", flat_region_keeps_mean)
+SVGF_DEVICE_TEST("atrous: weights fall to ~0 across a depth edge",
+                 "[atrous]", no_bleeding_across_depth)
+SVGF_DEVICE_TEST("atrous: weights fall to ~0 across a normal edge",
+                 "[atrous]", no_bleeding_across_normal)
+SVGF_DEVICE_TEST("atrous: weights fall to ~0 across a luminance edge",
+                 "[atrous]", no_bleeding_across_luminance)
+SVGF_DEVICE_TEST("atrous: NaN guides drop the tap instead of poisoning the pixel",
+                 "[atrous]", nan_guides_drop_the_tap)
+SVGF_DEVICE_TEST("atrous: every parameter's role, against a double-precision reference",
+                 "[atrous]", every_parameter_role)

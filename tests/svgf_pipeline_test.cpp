@@ -1,4 +1,5 @@
-// The whole SVGF pipeline on the CPU backend through the public Denoiser interface.
+// The whole SVGF pipeline through the public Denoiser interface, each test body on the CPU, CUDA
+// exact and CUDA fast (tests/test_device.h); then what only the CPU engine has.
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -12,17 +13,32 @@
 #include "kernels_cpu/parallel_for.h"
 #include "metrics/image_metrics.h"
 #include "synthetic_sequence.h"
+#include "test_device.h"
 #include "test_support.h"
 
 using namespace svgf;
+using svgf::test::kCpu;
+using svgf::test::TestDevice;
 
 namespace {
 
-DenoiserConfig cpu_config(int threads) {
-  DenoiserConfig c;
-  c.backend = Backend::Cpu;
+DenoiserConfig config_for(const TestDevice& d, int threads = 2) {
+  DenoiserConfig c = d.config(DenoiserConfig());
   c.threads = threads;
   return c;
+}
+DenoiserConfig cpu_config(int threads) { return config_for(kCpu, threads); }
+
+// Exact mode: identical bits. Fast mode: within its tolerance of the exact result.
+void require_matches(const TestDevice& d, const Image& got, const Image& exact,
+                     const std::string& what) {
+  if (!d.fast()) {
+    test::require_identical(got, exact, what);
+    return;
+  }
+  const double worst = test::max_relative_difference(got, exact, 1e-3);
+  INFO(what << ": fast mode's worst relative difference " << worst);
+  REQUIRE(worst <= test::kFastTolerance);
 }
 
 // `edit` (optional) changes each frame before it is denoised.
@@ -38,12 +54,9 @@ std::vector<Image> denoise_sequence(Denoiser& d, const test::SyntheticScene& sce
   return out;
 }
 
-}  // namespace
-
-TEST_CASE("pipeline: denoising a moving synthetic sequence beats the noisy input",
-          "[pipeline]") {
+void beats_noisy_input(const TestDevice& device) {
   test::SyntheticScene scene;
-  auto d = make_denoiser(cpu_config(0));
+  auto d = make_denoiser(config_for(device, 0));
   double noisy_psnr = 0, denoised_psnr = 0;
   for (int k = 0; k < 10; ++k) {
     const Frame f = scene.frame(k);
@@ -66,6 +79,197 @@ TEST_CASE("pipeline: denoising a moving synthetic sequence beats the noisy input
   REQUIRE(history.at(2, 2, 0) == 10.f);                      // the static wall
 }
 
+
+
+void feedback_tap_is_next_history(const TestDevice& device) {
+  test::SyntheticScene scene;
+  DenoiserConfig config = config_for(device);
+  config.svgf.iterations = 3;
+  config.svgf.feedback_tap = 0;
+  auto d = make_denoiser(config);
+  const Frame f0 = scene.frame(0);
+  Image out;
+  d->denoise(f0, out);
+
+  // Recompute frame 0 stage by stage up to the first a-trous iteration.
+  const int w = scene.width, h = scene.height;
+  const SvgfParams& p = config.svgf;
+  Image illum(w, h, 3), acc(w, h, 4), moments(w, h, 2), hist(w, h, 1), var(w, h, 4), it0(w, h, 4);
+  Image none3(w, h, 3), none1(w, h, 1);
+  cpu::for_each_pixel(w, h, DemodulateKernel{w, f0.color.rgb(), f0.albedo.rgb(), {}, illum.rgb(), p.albedo_epsilon});
+  ReprojectKernel r;
+  r.guides = r.prev_guides = f0.guides();
+  r.illumination = illum.rgb();
+  r.prev_color = none3.rgb();
+  r.prev_moment1 = r.prev_moment2 = r.prev_history = none1.plane(0);
+  r.has_history = false;
+  r.accumulated = {acc.rgb(), acc.plane(3)};
+  r.moment1 = moments.plane(0);
+  r.moment2 = moments.plane(1);
+  r.history = hist.plane(0);
+  r.params = p;
+  cpu::for_each_pixel(w, h, r);
+  cpu::for_each_pixel(w, h, VarianceKernel{f0.guides(), {acc.rgb(), acc.plane(3)}, moments.plane(0),
+                                           moments.plane(1), hist.plane(0), {var.rgb(), var.plane(3)}, p});
+  cpu::for_each_pixel(w, h, AtrousKernel{f0.guides(), {var.rgb(), var.plane(3)}, {it0.rgb(), it0.plane(3)}, 1, p});
+  Image it0_rgb(w, h, 3);
+  for (int c = 0; c < 3; ++c) std::copy(it0.plane(c), it0.plane(c) + w * h, it0_rgb.plane(c));
+  const Image history = d->read_buffer(svgf_buffer::kColorHistory);
+  require_matches(device, history, it0_rgb, "color history vs a-trous iteration 0 (CPU)");
+
+  // Frame 1 (the wall is static) blends its sample into exactly that history at alpha 1/2.
+  const Frame f1 = scene.frame(1);
+  d->denoise(f1, out);
+  const Image acc1 = d->read_buffer(svgf_buffer::kAccumulated);
+  const Image illum1 = d->read_buffer(svgf_buffer::kIllumination);
+  for (int x = 0; x < 4; ++x) {
+    const float hv = history.at(x, 2, 0);
+    REQUIRE(acc1.at(x, 2, 0) == hv + (illum1.at(x, 2, 0) - hv) * 0.5f);
+  }
+}
+
+void bad_input_does_not_poison(const TestDevice& device) {
+  test::SyntheticScene scene;
+  auto clean = make_denoiser(config_for(device));
+  auto dirty = make_denoiser(config_for(device));
+  Image out_clean, out_dirty;
+  for (int k = 0; k < 5; ++k) {
+    Frame f = scene.frame(k);
+    Frame g = f;
+    if (k == 2) {
+      // The same pixels set to 0 in the clean run: the documented replacement.
+      const int bad[][2] = {{10, 10}, {30, 20}, {50, 40}};
+      const float values[] = {std::numeric_limits<float>::quiet_NaN(),
+                              std::numeric_limits<float>::infinity(), -3.f};
+      for (int j = 0; j < 3; ++j) {
+        g.color.at(bad[j][0], bad[j][1], j) = values[j];
+        f.color.at(bad[j][0], bad[j][1], j) = 0.f;
+      }
+    }
+    clean->denoise(f, out_clean);
+    dirty->denoise(g, out_dirty);
+    REQUIRE(dirty->last_report().replaced_samples == (k == 2 ? 3 : 0));
+    for (float v : out_dirty.data()) REQUIRE(std::isfinite(v));
+    test::require_identical(out_dirty, out_clean, "frame " + std::to_string(k));
+  }
+}
+
+
+void reset_restarts_history(const TestDevice& device) {
+  test::SyntheticScene scene;
+  auto d = make_denoiser(config_for(device));
+  Image out;
+  d->denoise(scene.frame(0), out);
+  d->denoise(scene.frame(1), out);
+  REQUIRE(d->read_buffer(svgf_buffer::kHistoryLength).at(1, 1, 0) == 2.f);
+  d->reset();
+  d->denoise(scene.frame(2), out);
+  REQUIRE(d->read_buffer(svgf_buffer::kHistoryLength).at(1, 1, 0) == 1.f);
+}
+
+void defaults_are_falcors(const TestDevice& device) {
+  // The documented defaults (methods/svgf/params.h, docs/svgf.md), written out here, not read
+  // from the header...
+  SvgfParams falcor;
+  falcor.iterations = 4;
+  falcor.feedback_tap = 1;
+  falcor.phi_color = 10.f;
+  falcor.phi_normal = 128.f;
+  falcor.phi_depth = 1.f;
+  falcor.alpha = 0.05f;
+  falcor.moments_alpha = 0.2f;
+  falcor.history_cap = 32;
+  falcor.spatial_variance_history = 4;
+  falcor.spatial_variance_radius = 3;
+  falcor.spatial_variance_phi_depth = 3.f;
+  falcor.reproject_min_weight = 0.01f;
+  // ...and a default-configured denoiser gives the same bits as one given those values by
+  // hand, while moving any one of them changes the output: the pipeline reads what the
+  // configuration holds, and each default is the value it is documented to be.
+  // The synthetic scene's surfaces are flat and face the camera: bumps on the normals and a tilt
+  // of the depth let phi_normal and phi_depth matter.
+  test::SyntheticScene scene;
+  const auto bumps = [](Frame& f) {
+    for (int y = 0; y < f.height(); ++y)
+      for (int x = 0; x < f.width(); ++x) {
+        if (!(f.depth.at(x, y, 0) > 0.f)) continue;
+        f.depth.at(x, y, 0) += 0.02f * static_cast<float>(x);
+        f.depth_gradient.at(x, y, 0) += 0.02f;
+        const float bx = 0.15f * std::sin(0.9f * x), by = 0.15f * std::cos(0.7f * y);
+        float n[3] = {f.normal.at(x, y, 0) + bx, f.normal.at(x, y, 1) + by, f.normal.at(x, y, 2)};
+        const float len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        for (int c = 0; c < 3; ++c) f.normal.at(x, y, c) = n[c] / len;
+      }
+  };
+  DenoiserConfig by_default = config_for(device);
+  DenoiserConfig by_hand = config_for(device);
+  by_hand.svgf = falcor;
+  auto a = make_denoiser(by_default);
+  auto b = make_denoiser(by_hand);
+  const auto out_a = denoise_sequence(*a, scene, 8, bumps);
+  const auto out_b = denoise_sequence(*b, scene, 8, bumps);
+  for (int k = 0; k < 8; ++k) test::require_identical(out_a[k], out_b[k], "frame " + std::to_string(k));
+
+  auto changed = [&](auto change) {
+    DenoiserConfig c = by_hand;
+    change(c.svgf);
+    auto d = make_denoiser(c);
+    const auto out = denoise_sequence(*d, scene, 8, bumps);
+    size_t differing = 0;
+    for (int k = 0; k < 8; ++k)
+      for (size_t i = 0; i < out[k].data().size(); ++i)
+        differing += out[k].data()[i] != out_b[k].data()[i];
+    return differing;
+  };
+  REQUIRE(changed([](SvgfParams& p) { p.iterations = 5; }) > 0);
+  REQUIRE(changed([](SvgfParams& p) { p.feedback_tap = 0; }) > 0);
+  REQUIRE(changed([](SvgfParams& p) { p.phi_color = 5.f; }) > 0);
+  REQUIRE(changed([](SvgfParams& p) { p.phi_normal = 64.f; }) > 0);
+  REQUIRE(changed([](SvgfParams& p) { p.phi_depth = 0.5f; }) > 0);
+  REQUIRE(changed([](SvgfParams& p) { p.alpha = 0.3f; }) > 0);  // above 1 / length by frame 4
+  REQUIRE(changed([](SvgfParams& p) { p.moments_alpha = 0.1f; }) > 0);
+  REQUIRE(changed([](SvgfParams& p) { p.spatial_variance_history = 2; }) > 0);
+  REQUIRE(changed([](SvgfParams& p) { p.albedo_epsilon = 0.3f; }) > 0);
+}
+
+void phi_depth_zero_is_no_depth_term(const TestDevice& device) {
+  // Falcor's convention: a zero depth tolerance switches the depth term off (it does not
+  // reject every tap with a depth difference). So phi_depth = 0 must give the bits of a depth
+  // tolerance so large that every depth term is 0 (phi_depth = Inf), and differ from 0.01.
+  test::SyntheticScene scene;
+  auto run = [&](float phi_depth) {
+    DenoiserConfig c = config_for(device);
+    c.svgf.phi_depth = phi_depth;
+    c.svgf.spatial_variance_phi_depth = phi_depth;
+    auto d = make_denoiser(c);
+    return denoise_sequence(*d, scene, 5);
+  };
+  const auto zero = run(0.f), inf = run(std::numeric_limits<float>::infinity()), tiny = run(0.01f);
+  size_t differing = 0;
+  for (int k = 0; k < 5; ++k) {
+    test::require_identical(zero[k], inf[k], "phi_depth 0 vs Inf, frame " + std::to_string(k));
+    for (size_t i = 0; i < zero[k].data().size(); ++i)
+      differing += zero[k].data()[i] != tiny[k].data()[i];
+  }
+  REQUIRE(differing > 0);
+}
+
+}  // namespace
+
+SVGF_DEVICE_TEST("pipeline: denoising a moving synthetic sequence beats the noisy input",
+                 "[pipeline]", beats_noisy_input)
+SVGF_DEVICE_TEST("pipeline: the feedback tap is what the next frame reads", "[pipeline]",
+                 feedback_tap_is_next_history)
+SVGF_DEVICE_TEST("pipeline: NaN, Inf and negative input is counted and does not poison the history",
+                 "[pipeline]", bad_input_does_not_poison)
+SVGF_DEVICE_TEST("pipeline: reset() restarts the history", "[pipeline]", reset_restarts_history)
+SVGF_DEVICE_TEST("pipeline: the defaults are Falcor's SVGFPass values, as the pipeline uses them",
+                 "[pipeline]", defaults_are_falcors)
+SVGF_DEVICE_TEST("pipeline: phi_depth 0 means no depth term, in the a-trous and the variance stages",
+                 "[pipeline]", phi_depth_zero_is_no_depth_term)
+
+// The CPU engine only: thread counts, the FTZ/DAZ guard of its workers, and its refusal of
+// fast mode.
 TEST_CASE("pipeline: identical bits on 1 and 2 threads and from run to run", "[pipeline][determinism]") {
   test::SyntheticScene scene;
   auto one = make_denoiser(cpu_config(1));
@@ -104,80 +308,6 @@ TEST_CASE("pipeline: subnormals survive in TBB workers even if the caller flushe
   for (float v : illum.data()) REQUIRE(v == expect);
 }
 
-TEST_CASE("pipeline: the feedback tap is what the next frame reads", "[pipeline]") {
-  test::SyntheticScene scene;
-  DenoiserConfig config = cpu_config(2);
-  config.svgf.iterations = 3;
-  config.svgf.feedback_tap = 0;
-  auto d = make_denoiser(config);
-  const Frame f0 = scene.frame(0);
-  Image out;
-  d->denoise(f0, out);
-
-  // Recompute frame 0 stage by stage up to the first a-trous iteration.
-  const int w = scene.width, h = scene.height;
-  const SvgfParams& p = config.svgf;
-  Image illum(w, h, 3), acc(w, h, 4), moments(w, h, 2), hist(w, h, 1), var(w, h, 4), it0(w, h, 4);
-  Image none3(w, h, 3), none1(w, h, 1);
-  cpu::for_each_pixel(w, h, DemodulateKernel{w, f0.color.rgb(), f0.albedo.rgb(), {}, illum.rgb(), p.albedo_epsilon});
-  ReprojectKernel r;
-  r.guides = r.prev_guides = f0.guides();
-  r.illumination = illum.rgb();
-  r.prev_color = none3.rgb();
-  r.prev_moment1 = r.prev_moment2 = r.prev_history = none1.plane(0);
-  r.has_history = false;
-  r.accumulated = {acc.rgb(), acc.plane(3)};
-  r.moment1 = moments.plane(0);
-  r.moment2 = moments.plane(1);
-  r.history = hist.plane(0);
-  r.params = p;
-  cpu::for_each_pixel(w, h, r);
-  cpu::for_each_pixel(w, h, VarianceKernel{f0.guides(), {acc.rgb(), acc.plane(3)}, moments.plane(0),
-                                           moments.plane(1), hist.plane(0), {var.rgb(), var.plane(3)}, p});
-  cpu::for_each_pixel(w, h, AtrousKernel{f0.guides(), {var.rgb(), var.plane(3)}, {it0.rgb(), it0.plane(3)}, 1, p});
-  Image it0_rgb(w, h, 3);
-  for (int c = 0; c < 3; ++c) std::copy(it0.plane(c), it0.plane(c) + w * h, it0_rgb.plane(c));
-  const Image history = d->read_buffer(svgf_buffer::kColorHistory);
-  test::require_identical(history, it0_rgb, "color history vs a-trous iteration 0");
-
-  // Frame 1 (the wall is static) blends its sample into exactly that history at alpha 1/2.
-  const Frame f1 = scene.frame(1);
-  d->denoise(f1, out);
-  const Image acc1 = d->read_buffer(svgf_buffer::kAccumulated);
-  const Image illum1 = d->read_buffer(svgf_buffer::kIllumination);
-  for (int x = 0; x < 4; ++x) {
-    const float hv = history.at(x, 2, 0);
-    REQUIRE(acc1.at(x, 2, 0) == hv + (illum1.at(x, 2, 0) - hv) * 0.5f);
-  }
-}
-
-TEST_CASE("pipeline: NaN, Inf and negative input is counted and does not poison the history",
-          "[pipeline]") {
-  test::SyntheticScene scene;
-  auto clean = make_denoiser(cpu_config(2));
-  auto dirty = make_denoiser(cpu_config(2));
-  Image out_clean, out_dirty;
-  for (int k = 0; k < 5; ++k) {
-    Frame f = scene.frame(k);
-    Frame g = f;
-    if (k == 2) {
-      // The same pixels set to 0 in the clean run: the documented replacement.
-      const int bad[][2] = {{10, 10}, {30, 20}, {50, 40}};
-      const float values[] = {std::numeric_limits<float>::quiet_NaN(),
-                              std::numeric_limits<float>::infinity(), -3.f};
-      for (int j = 0; j < 3; ++j) {
-        g.color.at(bad[j][0], bad[j][1], j) = values[j];
-        f.color.at(bad[j][0], bad[j][1], j) = 0.f;
-      }
-    }
-    clean->denoise(f, out_clean);
-    dirty->denoise(g, out_dirty);
-    REQUIRE(dirty->last_report().replaced_samples == (k == 2 ? 3 : 0));
-    for (float v : out_dirty.data()) REQUIRE(std::isfinite(v));
-    test::require_identical(out_dirty, out_clean, "frame " + std::to_string(k));
-  }
-}
-
 TEST_CASE("pipeline: bad configurations and size changes are clear errors", "[pipeline]") {
   DenoiserConfig fast = cpu_config(1);
   fast.mode = Mode::Fast;
@@ -190,105 +320,4 @@ TEST_CASE("pipeline: bad configurations and size changes are clear errors", "[pi
   broken.albedo = Image(16, 7, 3);
   REQUIRE_THROWS_WITH(d->denoise(broken, out), Catch::Contains("albedo"));
   REQUIRE_THROWS_WITH(parse_backend("gpu"), Catch::Contains("gpu"));
-}
-
-TEST_CASE("pipeline: reset() restarts the history", "[pipeline]") {
-  test::SyntheticScene scene;
-  auto d = make_denoiser(cpu_config(2));
-  Image out;
-  d->denoise(scene.frame(0), out);
-  d->denoise(scene.frame(1), out);
-  REQUIRE(d->read_buffer(svgf_buffer::kHistoryLength).at(1, 1, 0) == 2.f);
-  d->reset();
-  d->denoise(scene.frame(2), out);
-  REQUIRE(d->read_buffer(svgf_buffer::kHistoryLength).at(1, 1, 0) == 1.f);
-}
-
-TEST_CASE("pipeline: the defaults are Falcor's SVGFPass values, as the pipeline uses them",
-          "[pipeline]") {
-  // The documented defaults (methods/svgf/params.h, docs/svgf.md), written out here, not read
-  // from the header...
-  SvgfParams falcor;
-  falcor.iterations = 4;
-  falcor.feedback_tap = 1;
-  falcor.phi_color = 10.f;
-  falcor.phi_normal = 128.f;
-  falcor.phi_depth = 1.f;
-  falcor.alpha = 0.05f;
-  falcor.moments_alpha = 0.2f;
-  falcor.history_cap = 32;
-  falcor.spatial_variance_history = 4;
-  falcor.spatial_variance_radius = 3;
-  falcor.spatial_variance_phi_depth = 3.f;
-  falcor.reproject_min_weight = 0.01f;
-  // ...and a default-configured denoiser gives the same bits as one given those values by
-  // hand, while moving any one of them changes the output: the pipeline reads what the
-  // configuration holds, and each default is the value it is documented to be.
-  // The synthetic scene's surfaces are flat and face the camera: bumps on the normals and a tilt
-  // of the depth let phi_normal and phi_depth matter.
-  test::SyntheticScene scene;
-  const auto bumps = [](Frame& f) {
-    for (int y = 0; y < f.height(); ++y)
-      for (int x = 0; x < f.width(); ++x) {
-        if (!(f.depth.at(x, y, 0) > 0.f)) continue;
-        f.depth.at(x, y, 0) += 0.02f * static_cast<float>(x);
-        f.depth_gradient.at(x, y, 0) += 0.02f;
-        const float bx = 0.15f * std::sin(0.9f * x), by = 0.15f * std::cos(0.7f * y);
-        float n[3] = {f.normal.at(x, y, 0) + bx, f.normal.at(x, y, 1) + by, f.normal.at(x, y, 2)};
-        const float len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-        for (int c = 0; c < 3; ++c) f.normal.at(x, y, c) = n[c] / len;
-      }
-  };
-  DenoiserConfig by_default = cpu_config(2);
-  DenoiserConfig by_hand = cpu_config(2);
-  by_hand.svgf = falcor;
-  auto a = make_denoiser(by_default);
-  auto b = make_denoiser(by_hand);
-  const auto out_a = denoise_sequence(*a, scene, 8, bumps);
-  const auto out_b = denoise_sequence(*b, scene, 8, bumps);
-  for (int k = 0; k < 8; ++k) test::require_identical(out_a[k], out_b[k], "frame " + std::to_string(k));
-
-  auto changed = [&](auto change) {
-    DenoiserConfig c = by_hand;
-    change(c.svgf);
-    auto d = make_denoiser(c);
-    const auto out = denoise_sequence(*d, scene, 8, bumps);
-    size_t differing = 0;
-    for (int k = 0; k < 8; ++k)
-      for (size_t i = 0; i < out[k].data().size(); ++i)
-        differing += out[k].data()[i] != out_b[k].data()[i];
-    return differing;
-  };
-  REQUIRE(changed([](SvgfParams& p) { p.iterations = 5; }) > 0);
-  REQUIRE(changed([](SvgfParams& p) { p.feedback_tap = 0; }) > 0);
-  REQUIRE(changed([](SvgfParams& p) { p.phi_color = 5.f; }) > 0);
-  REQUIRE(changed([](SvgfParams& p) { p.phi_normal = 64.f; }) > 0);
-  REQUIRE(changed([](SvgfParams& p) { p.phi_depth = 0.5f; }) > 0);
-  REQUIRE(changed([](SvgfParams& p) { p.alpha = 0.3f; }) > 0);  // above 1 / length by frame 4
-  REQUIRE(changed([](SvgfParams& p) { p.moments_alpha = 0.1f; }) > 0);
-  REQUIRE(changed([](SvgfParams& p) { p.spatial_variance_history = 2; }) > 0);
-  REQUIRE(changed([](SvgfParams& p) { p.albedo_epsilon = 0.3f; }) > 0);
-}
-
-TEST_CASE("pipeline: phi_depth 0 means no depth term, in the a-trous and the variance stages",
-          "[pipeline]") {
-  // Falcor's convention: a zero depth tolerance switches the depth term off (it does not
-  // reject every tap with a depth difference). So phi_depth = 0 must give the bits of a depth
-  // tolerance so large that every depth term is 0 (phi_depth = Inf), and differ from 0.01.
-  test::SyntheticScene scene;
-  auto run = [&](float phi_depth) {
-    DenoiserConfig c = cpu_config(2);
-    c.svgf.phi_depth = phi_depth;
-    c.svgf.spatial_variance_phi_depth = phi_depth;
-    auto d = make_denoiser(c);
-    return denoise_sequence(*d, scene, 5);
-  };
-  const auto zero = run(0.f), inf = run(std::numeric_limits<float>::infinity()), tiny = run(0.01f);
-  size_t differing = 0;
-  for (int k = 0; k < 5; ++k) {
-    test::require_identical(zero[k], inf[k], "phi_depth 0 vs Inf, frame " + std::to_string(k));
-    for (size_t i = 0; i < zero[k].data().size(); ++i)
-      differing += zero[k].data()[i] != tiny[k].data()[i];
-  }
-  REQUIRE(differing > 0);
 }

@@ -1,46 +1,52 @@
+// Stage 2, temporal reprojection and accumulation, on every backend (tests/test_device.h). Fast
+// mode runs this same exact kernel (its history decisions are exact mode's): CPU and CUDA exact.
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include <catch2/catch.hpp>
 
 #include "methods/svgf/reproject.h"
-#include "kernels_cpu/parallel_for.h"
+#include "test_device.h"
 #include "test_support.h"
 
 using namespace svgf;
+using svgf::test::TestDevice;
 
 namespace {
 
 // Drives the reproject kernel alone, feeding its accumulated color back as the next frame's
 // history (what the pipeline does with feedback disabled).
 struct ReprojectRig {
+  test::TestDevice device;
   int w, h;
   Frame prev_frame, cur_frame;
   Image illum, prev_color, moments_prev, history_prev, accumulated, moments, history;
   bool has_history = false;
   SvgfParams params;
 
-  ReprojectRig(int w_, int h_)
-      : w(w_), h(h_), prev_frame(test::flat_frame(w_, h_)), cur_frame(test::flat_frame(w_, h_)),
+  ReprojectRig(const test::TestDevice& d, int w_, int h_)
+      : device(d), w(w_), h(h_), prev_frame(test::flat_frame(w_, h_)), cur_frame(test::flat_frame(w_, h_)),
         illum(w_, h_, 3), prev_color(w_, h_, 3), moments_prev(w_, h_, 2),
         history_prev(w_, h_, 1), accumulated(w_, h_, 4), moments(w_, h_, 2), history(w_, h_, 1) {}
 
   void step() {
+    test::StageRunner r(device);  // a fresh one each step: the images below are reassigned
     ReprojectKernel k;
-    k.guides = cur_frame.guides();
-    k.prev_guides = prev_frame.guides();
-    k.illumination = illum.rgb();
-    k.prev_color = prev_color.rgb();
-    k.prev_moment1 = moments_prev.plane(0);
-    k.prev_moment2 = moments_prev.plane(1);
-    k.prev_history = history_prev.plane(0);
+    k.guides = r.guides(cur_frame);
+    k.prev_guides = r.guides(prev_frame);
+    k.illumination = r.rgb(std::as_const(illum));
+    k.prev_color = r.rgb(std::as_const(prev_color));
+    k.prev_moment1 = r.plane(std::as_const(moments_prev), 0);
+    k.prev_moment2 = r.plane(std::as_const(moments_prev), 1);
+    k.prev_history = r.plane(std::as_const(history_prev));
     k.has_history = has_history;
-    k.accumulated = {accumulated.rgb(), accumulated.plane(3)};
-    k.moment1 = moments.plane(0);
-    k.moment2 = moments.plane(1);
-    k.history = history.plane(0);
+    k.accumulated = r.illum_var(accumulated);
+    k.moment1 = r.plane(moments, 0);
+    k.moment2 = r.plane(moments, 1);
+    k.history = r.plane(history);
     k.params = params;
-    cpu::for_each_pixel(w, h, k);
+    r.run(k, w, h, "reproject");
     // This frame's outputs become the next frame's history.
     for (int c = 0; c < 3; ++c)
       std::copy(accumulated.plane(c), accumulated.plane(c) + w * h, prev_color.plane(c));
@@ -53,8 +59,10 @@ struct ReprojectRig {
 
 }  // namespace
 
-TEST_CASE("reproject: the first frame starts a history of length 1", "[reproject]") {
-  ReprojectRig rig(16, 8);
+namespace {
+
+void first_frame_starts_history(const TestDevice& d) {
+  ReprojectRig rig(d, 16, 8);
   test::fill_uniform(rig.illum, 0.f, 3.f, 11);
   rig.step();
   for (int i = 0; i < 16 * 8; ++i) {
@@ -67,8 +75,8 @@ TEST_CASE("reproject: the first frame starts a history of length 1", "[reproject
   }
 }
 
-TEST_CASE("reproject: a static 4-frame sequence accumulates to the exact mean", "[reproject]") {
-  ReprojectRig rig(24, 10);
+void static_sequence_accumulates_mean(const TestDevice& d) {
+  ReprojectRig rig(d, 24, 10);
   std::vector<Image> frames;
   for (int k = 0; k < 4; ++k) {
     frames.emplace_back(24, 10, 3);
@@ -93,8 +101,8 @@ TEST_CASE("reproject: a static 4-frame sequence accumulates to the exact mean", 
   REQUIRE(rig.history.plane(0)[0] == float(rig.params.history_cap));
 }
 
-TEST_CASE("reproject: a disoccluded pixel restarts its history", "[reproject]") {
-  ReprojectRig rig(12, 12);
+void disocclusion_restarts_history(const TestDevice& d) {
+  ReprojectRig rig(d, 12, 12);
   test::fill_uniform(rig.illum, 0.5f, 2.f, 3);
   rig.step();
   rig.step();
@@ -117,8 +125,8 @@ TEST_CASE("reproject: a disoccluded pixel restarts its history", "[reproject]") 
     }
 }
 
-TEST_CASE("reproject: depth and normal changes reject the history", "[reproject]") {
-  ReprojectRig rig(8, 4);
+void depth_and_normal_reject_history(const TestDevice& d) {
+  ReprojectRig rig(d, 8, 4);
   test::fill_uniform(rig.illum, 0.5f, 2.f, 5);
   rig.step();
   rig.cur_frame.depth.plane(0)[1] = 2.f * 1.2f;    // 20% deeper: beyond the 3% tolerance
@@ -134,8 +142,8 @@ TEST_CASE("reproject: depth and normal changes reject the history", "[reproject]
   CHECK(rig.history.plane(0)[3] == 1.f);
 }
 
-TEST_CASE("reproject: motion vectors fetch history from the previous position", "[reproject]") {
-  ReprojectRig rig(16, 6);
+void motion_fetches_previous_position(const TestDevice& d) {
+  ReprojectRig rig(d, 16, 6);
   test::fill_uniform(rig.illum, 0.5f, 2.f, 6);
   rig.step();
   const Image first = rig.illum;
@@ -162,8 +170,8 @@ TEST_CASE("reproject: motion vectors fetch history from the previous position", 
     }
 }
 
-TEST_CASE("reproject: half-pixel motion blends the two bilinear taps", "[reproject]") {
-  ReprojectRig rig(8, 1);
+void half_pixel_motion_blends_taps(const TestDevice& d) {
+  ReprojectRig rig(d, 8, 1);
   for (int x = 0; x < 8; ++x)
     for (int c = 0; c < 3; ++c) rig.illum.at(x, 0, c) = float(x);
   rig.step();
@@ -177,8 +185,7 @@ TEST_CASE("reproject: half-pixel motion blends the two bilinear taps", "[reproje
   REQUIRE(rig.accumulated.at(0, 0, 0) == 0.f + (100.f - 0.f) * 0.5f);
 }
 
-TEST_CASE("reproject: color and moments follow their own alpha, capped history, in double",
-          "[reproject]") {
+void own_alphas_and_cap_in_double(const TestDevice& d) {
   // A static sequence long enough for the history cap and both alpha floors to apply, with a
   // different illumination every frame. The reference is the paper's exponential moving
   // average in double: a = max(alpha, 1 / length) for the color, max(moments_alpha, 1 / length)
@@ -189,7 +196,7 @@ TEST_CASE("reproject: color and moments follow their own alpha, capped history, 
     int cap;
   };
   for (const Set s : {Set{0.05f, 0.2f, 32}, Set{0.2f, 0.05f, 32}, Set{0.05f, 0.2f, 8}}) {
-    ReprojectRig rig(6, 4);
+    ReprojectRig rig(d, 6, 4);
     rig.params.alpha = s.alpha;
     rig.params.moments_alpha = s.moments_alpha;
     rig.params.history_cap = s.cap;
@@ -215,14 +222,13 @@ TEST_CASE("reproject: color and moments follow their own alpha, capped history, 
   }
 }
 
-TEST_CASE("reproject: the depth test's two tolerances and the normal test, at their thresholds",
-          "[reproject]") {
+void depth_and_normal_thresholds(const TestDevice& d) {
   // A static 5x5 frame whose previous depth or normal is moved, everywhere (else the 3x3
   // fallback would find the unmoved neighbours), just inside or just outside the tolerance
   // |z - z_prev| <= scale * fwidth(z) + relative * z (and n . n_prev >= reproject_normal_cos).
   // Kept: history length 2; rejected: 1.
-  auto history_after = [](auto change_params, float prev_depth, float prev_nx) {
-    ReprojectRig rig(5, 5);
+  auto history_after = [&](auto change_params, float prev_depth, float prev_nx) {
+    ReprojectRig rig(d, 5, 5);
     change_params(rig.params);
     for (int i = 0; i < 25; ++i) rig.cur_frame.depth_gradient.plane(0)[i] = 0.01f;
     test::fill_uniform(rig.illum, 0.1f, 1.f, 5);
@@ -256,14 +262,13 @@ TEST_CASE("reproject: the depth test's two tolerances and the normal test, at th
   REQUIRE(history_after(strict, 2.f, 0.3f) == 1.f);
 }
 
-TEST_CASE("reproject: below reproject_min_weight the bilinear taps give way to the 3x3 fallback",
-          "[reproject]") {
+void min_weight_falls_back_to_3x3(const TestDevice& d) {
   // Motion (0.7, 0.7): bilinear weights 0.09 (x, y), 0.21, 0.21, 0.49. Only tap (x, y) passes
   // the depth test, so the kept weight is 0.09: above the default 0.01 the history is that
   // tap's color; with min_weight 0.1 it is the mean of the consistent pixels of the 3x3 block
   // around the nearest previous pixel (x + 1, y + 1).
-  auto accumulate = [](float min_weight) {
-    ReprojectRig rig(7, 7);
+  auto accumulate = [&](float min_weight) {
+    ReprojectRig rig(d, 7, 7);
     rig.params.reproject_min_weight = min_weight;
     test::fill_uniform(rig.illum, 0.1f, 1.f, 9);
     rig.prev_frame = rig.cur_frame;
@@ -300,3 +305,24 @@ TEST_CASE("reproject: below reproject_min_weight the bilinear taps give way to t
   mean /= count;
   REQUIRE(fell_back.accumulated.at(2, 2, 1) == Approx(mean + (sample - mean) * 0.5).epsilon(1e-5));
 }
+
+}  // namespace
+
+SVGF_BACKEND_TEST("reproject: the first frame starts a history of length 1",
+                  "[reproject]", first_frame_starts_history)
+SVGF_BACKEND_TEST("reproject: a static 4-frame sequence accumulates to the exact mean",
+                  "[reproject]", static_sequence_accumulates_mean)
+SVGF_BACKEND_TEST("reproject: a disoccluded pixel restarts its history",
+                  "[reproject]", disocclusion_restarts_history)
+SVGF_BACKEND_TEST("reproject: depth and normal changes reject the history",
+                  "[reproject]", depth_and_normal_reject_history)
+SVGF_BACKEND_TEST("reproject: motion vectors fetch history from the previous position",
+                  "[reproject]", motion_fetches_previous_position)
+SVGF_BACKEND_TEST("reproject: half-pixel motion blends the two bilinear taps",
+                  "[reproject]", half_pixel_motion_blends_taps)
+SVGF_BACKEND_TEST("reproject: color and moments follow their own alpha, capped history, in double",
+                  "[reproject]", own_alphas_and_cap_in_double)
+SVGF_BACKEND_TEST("reproject: the depth test's two tolerances and the normal test, at their thresholds",
+                  "[reproject]", depth_and_normal_thresholds)
+SVGF_BACKEND_TEST("reproject: below reproject_min_weight the bilinear taps give way to the 3x3 fallback",
+                  "[reproject]", min_weight_falls_back_to_3x3)

@@ -1,59 +1,79 @@
+// Stage 3, the variance estimate, on the CPU, CUDA exact and CUDA fast (tests/test_device.h):
+// known answers in double, exact to float rounding, fast to its tolerance.
 #include <cmath>
 #include <limits>
+#include <type_traits>
+#include <utility>
 
 #include <catch2/catch.hpp>
 
 #include "methods/svgf/variance.h"
-#include "kernels_cpu/parallel_for.h"
+#include "svgf_flavor_views.h"
+#include "test_device.h"
 #include "test_support.h"
 
 using namespace svgf;
+using svgf::test::TestDevice;
 
 namespace {
 
 struct VarianceRig {
+  test::TestDevice device;
   int w, h;
   Frame frame;
   Image accumulated, moments, history, out;
   SvgfParams params;
-  VarianceRig(int w_, int h_, float history_length)
-      : w(w_), h(h_), frame(test::flat_frame(w_, h_)), accumulated(w_, h_, 4), moments(w_, h_, 2),
+  VarianceRig(const test::TestDevice& d, int w_, int h_, float history_length)
+      : device(d), w(w_), h(h_), frame(test::flat_frame(w_, h_)), accumulated(w_, h_, 4), moments(w_, h_, 2),
         history(w_, h_, 1, history_length), out(w_, h_, 4) {}
+  // The stage as the pipeline runs it, in the device's flavor (exact planes or fast packed).
   void run() {
-    cpu::for_each_pixel(w, h, VarianceKernel{frame.guides(), {accumulated.rgb(), accumulated.plane(3)},
-                                             moments.plane(0), moments.plane(1), history.plane(0),
-                                             {out.rgb(), out.plane(3)}, params});
+    test::StageRunner r(device);
+    test::with_flavor(device, [&](auto flavor) {
+      using Flavor = decltype(flavor);
+      Flavor::with_normal_power(params.phi_normal, [&](const auto& power) {
+        using Power = std::decay_t<decltype(power)>;
+        r.run(VarianceEstimate<Flavor, Power>{test::filter_guides(flavor, r, frame),
+                                              r.illum_var(std::as_const(accumulated)),
+                                              r.plane(std::as_const(moments), 0),
+                                              r.plane(std::as_const(moments), 1),
+                                              r.plane(std::as_const(history)),
+                                              test::signal(flavor, r, out), params},
+              w, h, "variance");
+      });
+    });
   }
 };
 
 }  // namespace
 
-TEST_CASE("variance: with history >= 4 the temporal estimate passes through", "[variance]") {
-  VarianceRig rig(13, 5, 4.f);
+namespace {
+
+void old_history_passes_through(const TestDevice& d) {
+  VarianceRig rig(d, 13, 5, 4.f);
   test::fill_uniform(rig.accumulated, 0.f, 2.f, 21);
   test::fill_uniform(rig.moments, 0.f, 2.f, 22);
   rig.run();
   test::require_identical(rig.out, rig.accumulated, "passthrough");
 }
 
-TEST_CASE("variance: young history on a constant image gives zero variance", "[variance]") {
-  VarianceRig rig(15, 9, 1.f);
+void constant_image_zero_variance(const TestDevice& d) {
+  VarianceRig rig(d, 15, 9, 1.f);
   for (int c = 0; c < 3; ++c) std::fill_n(rig.accumulated.plane(c), 15 * 9, 0.6f);
   const float l = luminance(make_vec3(0.6f, 0.6f, 0.6f));
   std::fill_n(rig.moments.plane(0), 15 * 9, l);
   std::fill_n(rig.moments.plane(1), 15 * 9, l * l);
   rig.run();
   for (int i = 0; i < 15 * 9; ++i) {
-    for (int c = 0; c < 3; ++c) REQUIRE(rig.out.plane(c)[i] == Approx(0.6f).epsilon(1e-6));
+    for (int c = 0; c < 3; ++c) REQUIRE(rig.out.plane(c)[i] == Approx(0.6f).epsilon(d.tolerance(1e-6)));
     REQUIRE(rig.out.plane(3)[i] == Approx(0.f).margin(1e-6));
   }
 }
 
-TEST_CASE("variance: the spatial estimate is the moments' variance, boosted by 4/h",
-          "[variance]") {
+void spatial_estimate_boosted(const TestDevice& d) {
   // Interior pixel of a flat, equal-luminance-weighted region (phi_color huge): the estimate is
   // the plain 7x7 mean of the moments, variance m2 - m1^2, times 4 / history.
-  VarianceRig rig(21, 21, 2.f);
+  VarianceRig rig(d, 21, 21, 2.f);
   rig.params.phi_color = std::numeric_limits<float>::infinity();
   rig.params.phi_normal = 0.f;
   test::fill_uniform(rig.accumulated, 0.f, 2.f, 23);
@@ -71,8 +91,8 @@ TEST_CASE("variance: the spatial estimate is the moments' variance, boosted by 4
   REQUIRE(rig.out.at(10, 10, 3) == Approx((m2 - m1 * m1) * 2.0).epsilon(1e-4));
 }
 
-TEST_CASE("variance: the spatial estimate does not bleed across a depth edge", "[variance]") {
-  VarianceRig rig(20, 6, 1.f);
+void no_bleeding_across_depth_edge(const TestDevice& d) {
+  VarianceRig rig(d, 20, 6, 1.f);
   for (int y = 0; y < 6; ++y)
     for (int x = 0; x < 20; ++x) {
       const bool right = x >= 10;
@@ -84,17 +104,16 @@ TEST_CASE("variance: the spatial estimate does not bleed across a depth edge", "
     }
   rig.run();
   for (int y = 0; y < 6; ++y) {
-    REQUIRE(rig.out.at(9, y, 0) == Approx(0.25f).epsilon(1e-5));
-    REQUIRE(rig.out.at(10, y, 0) == Approx(4.f).epsilon(1e-5));
+    REQUIRE(rig.out.at(9, y, 0) == Approx(0.25f).epsilon(d.tolerance(1e-5)));
+    REQUIRE(rig.out.at(10, y, 0) == Approx(4.f).epsilon(d.tolerance(1e-5)));
     REQUIRE(rig.out.at(9, y, 3) == Approx(0.f).margin(1e-5));
   }
 }
 
-TEST_CASE("variance: the radius, the young-history threshold and the depth tolerance's scale",
-          "[variance]") {
+void radius_threshold_depth_scale(const TestDevice& d) {
   // Unit luminance and normal weights: each parameter is then seen in a known answer.
-  auto rig_for = [](float history_length) {
-    VarianceRig rig(21, 21, history_length);
+  auto rig_for = [&](float history_length) {
+    VarianceRig rig(d, 21, 21, history_length);
     rig.params.phi_color = std::numeric_limits<float>::infinity();
     rig.params.phi_normal = 0.f;
     test::fill_uniform(rig.accumulated, 0.f, 2.f, 31);
@@ -162,3 +181,16 @@ TEST_CASE("variance: the radius, the young-history threshold and the depth toler
     }
   }
 }
+
+}  // namespace
+
+SVGF_DEVICE_TEST("variance: with history >= 4 the temporal estimate passes through",
+                 "[variance]", old_history_passes_through)
+SVGF_DEVICE_TEST("variance: young history on a constant image gives zero variance",
+                 "[variance]", constant_image_zero_variance)
+SVGF_DEVICE_TEST("variance: the spatial estimate is the moments' variance, boosted by 4/h",
+                 "[variance]", spatial_estimate_boosted)
+SVGF_DEVICE_TEST("variance: the spatial estimate does not bleed across a depth edge",
+                 "[variance]", no_bleeding_across_depth_edge)
+SVGF_DEVICE_TEST("variance: the radius, the young-history threshold and the depth tolerance's scale",
+                 "[variance]", radius_threshold_depth_scale)

@@ -1,0 +1,69 @@
+// The test harness itself (tests/test_device.h), on the host: the CPU == CUDA comparison is bit
+// for bit and names where it failed; tolerances widen only in fast mode; the CPU runner runs
+// the kernel on the images themselves and counts.
+#include <cstring>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "methods/svgf/demodulate.h"
+#include "test_device.h"
+
+using namespace svgf;
+using namespace svgf::test;
+
+namespace {
+uint32_t bits(float v) {
+  uint32_t u;
+  std::memcpy(&u, &v, 4);
+  return u;
+}
+}  // namespace
+
+TEST_CASE("test device: the exact comparison is bitwise and names the first differences",
+          "[harness]") {
+  // Two planes of a 3x2 image.
+  std::vector<uint32_t> want(12), got(12);
+  for (size_t i = 0; i < want.size(); ++i) want[i] = got[i] = bits(0.25f * static_cast<float>(i));
+  std::string first;
+  REQUIRE(differing_words(want, got, 6, 3, {"color", "variance"}, &first) == 0);
+  got[1] = bits(-0.f);  // +0 vs -0: equal as floats, different bits
+  want[1] = bits(0.f);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  want[10] = bits(nan);
+  got[10] = bits(nan) | 1u;  // another NaN payload
+  REQUIRE(differing_words(want, got, 6, 3, {"color", "variance"}, &first) == 2);
+  INFO(first);
+  REQUIRE(first.find("color (1,0)") != std::string::npos);
+  REQUIRE(first.find("variance (1,1)") != std::string::npos);
+  got.pop_back();
+  REQUIRE(differing_words(want, got, 6, 3, {}, nullptr) == 3);  // a size mismatch counts
+}
+
+TEST_CASE("test device: names, configurations and tolerances", "[harness]") {
+  REQUIRE(kCpu.name() == "cpu");
+  REQUIRE(kCudaExact.name() == "cuda");
+  REQUIRE(kCudaFast.name() == "cuda-fast");
+  REQUIRE(kCudaExact.tolerance(1e-6) == 1e-6);
+  REQUIRE(kCudaFast.tolerance(1e-6) == kFastTolerance);
+  REQUIRE(kCudaFast.tolerance(1e-2) == 1e-2);
+  EngineConfig c;
+  c = kCudaFast.config(c);
+  REQUIRE(c.backend == Backend::Cuda);
+  REQUIRE(c.mode == Mode::Fast);
+}
+
+TEST_CASE("test device: on the CPU the runner runs on the images and counts", "[harness]") {
+  Image color(5, 3, 3, 1.f), albedo(5, 3, 3, 0.5f), illum(5, 3, 3, -1.f);
+  color.at(2, 1, 0) = std::numeric_limits<float>::infinity();
+  StageRunner r(kCpu);
+  const ConstRgbView c = r.rgb(std::as_const(color));
+  REQUIRE(c.r == color.plane(0));  // the host planes themselves
+  REQUIRE(r.run(DemodulateKernel{5, c, r.rgb(std::as_const(albedo)), {}, r.rgb(illum), 1e-3f},
+                5, 3) == 1);
+  REQUIRE(illum.at(0, 0, 0) == 2.f);
+  REQUIRE(illum.at(2, 1, 0) == 0.f);
+}
