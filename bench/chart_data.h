@@ -1,6 +1,7 @@
 #pragma once
-// Turns suite results (cpu.json, gpu.json) into the whitespace-separated tables the gnuplot
-// scripts in bench/chart/ draw, and summary.md: every table of docs/benchmarks.md, generated.
+// `svgf-bench chart-data`: suite results (cpu.json, gpu.json) in, the tables bench/chart.sh
+// draws and summary.md (every table of docs/benchmarks.md) out. Results model: results.h;
+// chart points: chart_points.h; writers: chart_tables.h (*.dat), summary.h (Markdown).
 #include <string>
 
 namespace svgf::bench {
