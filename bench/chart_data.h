@@ -6,7 +6,12 @@
 
 namespace svgf::bench {
 
-// Reads every suite JSON in results_dir; writes <out_dir>/*.dat and <out_dir>/summary.md.
-int write_chart_data(const std::string& results_dir, const std::string& out_dir);
+// The targets file the build knows (bench/targets.json in the source tree).
+const char* default_targets_path();
+
+// Reads every suite JSON in results_dir and the targets file; writes <out_dir>/*.dat and
+// <out_dir>/summary.md.
+int write_chart_data(const std::string& results_dir, const std::string& out_dir,
+                     const std::string& targets_path);
 
 }  // namespace svgf::bench

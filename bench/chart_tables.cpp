@@ -109,8 +109,7 @@ void write_scaling(const fs::path& out, const Results& r) {
     std::ostringstream s;
     s << "# megapixels median_ms p95_ms size\n";
     for (const json* e : es)
-      s << mpix(*e) << ' ' << median_ms(*e) << ' '
-        << p95_ms(*e) << " \"" << size_of(*e) << "\"\n";
+      s << mpix(*e) << ' ' << median_ms(*e) << ' ' << p95_ms(*e) << " \"" << size_of(*e) << "\"\n";
     write_text_file(out / file, s.str());
   };
   std::map<int, std::vector<const json*>> cpu_by_threads;
@@ -133,8 +132,7 @@ void write_scaling(const fs::path& out, const Results& r) {
       const json& c = (*e)["config"];
       const int it = c["iterations"].get<int>(), tap = c["feedback_tap"].get<int>();
       if (tap != (it == 1 ? 0 : 1)) continue;  // the default tap only
-      s << it << ' ' << median_ms(*e) << ' ' << p95_ms(*e)
-        << " \"" << size_of(*e) << "\"\n";
+      s << it << ' ' << median_ms(*e) << ' ' << p95_ms(*e) << " \"" << size_of(*e) << "\"\n";
     }
     write_text_file(out / file, s.str());
   };

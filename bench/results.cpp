@@ -11,8 +11,14 @@ namespace svgf::bench {
 namespace {
 
 // Fields (JSON pointers) the writers read from every entry of a list.
-const char* const kTimingFields[] = {"/group", "/key", "/label", "/input/width", "/input/height",
-                                     "/input/pixels", "/config", "/frame_ms/filter/median",
+const char* const kTimingFields[] = {"/group",
+                                     "/key",
+                                     "/label",
+                                     "/input/width",
+                                     "/input/height",
+                                     "/input/pixels",
+                                     "/config",
+                                     "/frame_ms/filter/median",
                                      "/frame_ms/filter/p95"};
 const char* const kQualityFields[] = {"/key", "/scene", "/mean", "/frames"};
 
@@ -81,8 +87,7 @@ Results load_results(const std::string& dir) {
     const std::string name = doc["suite"].get<std::string>();  // before doc is moved from
     r.suites[name] = std::move(doc);
   }
-  if (r.suites.empty())
-    throw std::runtime_error("no suite results (cpu.json, gpu.json) in " + dir);
+  if (r.suites.empty()) throw std::runtime_error("no suite results (cpu.json, gpu.json) in " + dir);
   return r;
 }
 

@@ -5,9 +5,11 @@
 
 #include "bench/chart_points.h"
 #include "bench/results.h"
+#include "bench/targets.h"
 
 namespace svgf::bench {
 
-std::string summary_markdown(const Results& r, const std::vector<Point>& pts);
+std::string summary_markdown(const Results& r, const std::vector<Point>& pts,
+                             const std::vector<TargetResult>& targets);
 
 }  // namespace svgf::bench
