@@ -29,8 +29,10 @@ namespace {
 const char* const kUsage =
     "usage: svgf-bench [run] [options]          one configuration, timed (and measured)\n"
     "       svgf-bench suite cpu|gpu [options]   the suites behind docs/benchmarks.md\n"
-    "       svgf-bench chart-data RESULTS_DIR [--out DIR]\n"
-    "                                            tables for bench/chart.sh and summary.md\n"
+    "       svgf-bench chart-data RESULTS_DIR [--out DIR] [--targets FILE]\n"
+    "                                            tables for bench/chart.sh and summary.md, with\n"
+    "                                            each target's verdict (default: the source\n"
+    "                                            tree's bench/targets.json)\n"
     "       svgf-bench --help\n"
     "\n"
     "run: times every stage (CUDA events on the GPU, a steady clock on the CPU) over --frames\n"
@@ -219,10 +221,11 @@ int main(int argc, char** argv) {
     if (!args.empty() && args[0] == "suite")
       return suite_command({args.begin() + 1, args.end()}, command);
     if (!args.empty() && args[0] == "chart-data") {
-      const Options o({args.begin() + 1, args.end()}, {"out"}, {});
+      const Options o({args.begin() + 1, args.end()}, {"out", "targets"}, {});
       if (o.positional().size() != 1) throw UsageError("chart-data needs RESULTS_DIR");
       return svgf::bench::write_chart_data(o.positional()[0],
-                                           o.get("out", o.positional()[0] + "/data"));
+                                           o.get("out", o.positional()[0] + "/data"),
+                                           o.get("targets", svgf::bench::default_targets_path()));
     }
     if (!args.empty() && args[0] == "run") args.erase(args.begin());
     return run_command(args, command);

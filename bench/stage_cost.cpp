@@ -1,7 +1,8 @@
 // Bytes and operations per pixel of every SVGF stage, read off the functors in methods/svgf/:
 // exact mode (both backends) and the SvgfFast flavor (fast mode, methods/svgf/flavors.h), counted
-// by hand (not yet derived from the kernels or checked against them). Conventions
-// (docs/benchmarks.md):
+// by hand. tests/bench_stage_cost_test.cpp checks exact mode's plane counts (bytes) against the
+// kernels; the operation counts, and everything of fast mode, are not checked (see
+// stage_cost.h). Conventions (docs/benchmarks.md):
 //  - bytes: every plane the kernel reads, once, plus every plane it writes, once; 4 bytes a
 //    value. Neighbour taps are assumed served by the caches (that is the floor, not a model);
 //  - the steady state: a surface pixel whose history is at least spatial_variance_history frames
@@ -85,10 +86,13 @@ StageCost exact_cost(Stage stage, const SvgfParams& p, bool emission, bool surfa
           "illumination); W accumulated 4, moments 2, length 1";
       break;
     case Stage::Variance:
-      c.read = (1 + 1 + 4) * kFloat;  // history length, depth, accumulated color + variance
-      c.written = 4 * kFloat;         // filtered[0] color + variance
+      // The history length alone sends an old surface pixel down the pass-through (the guides
+      // are read on the young-history path only); a background pixel's length is 1, so it
+      // reads its depth too.
+      c.read = (1 + 4 + (surface ? 0 : 1)) * kFloat;  // length, accumulated, (depth)
+      c.written = 4 * kFloat;                         // filtered[0] color + variance
       c.ops = kVarianceSteady;
-      c.planes = "R length 1, depth 1, accumulated 4; W color + variance 4";
+      c.planes = "R length 1, accumulated 4 (background: + depth 1); W color + variance 4";
       break;
     case Stage::Atrous:
       // Per iteration: color + variance 4, depth, depth dx/dy, normal 3 (10 read; background
@@ -133,11 +137,11 @@ StageCost fast_cost(Stage stage, const SvgfParams& p, bool emission, bool surfac
           "(background: depth, normal); W illumination 3, accumulated 4, moments 2, length 1, "
           "packed guides 4";
       break;
-    case Stage::Variance:
-      c.read = (1 + 4 + 4) * kFloat;  // length, packed guides, accumulated
-      c.written = 4 * kFloat;         // packed color + variance
+    case Stage::Variance:  // the same functor as exact mode's: guides on background only
+      c.read = (1 + 4 + (surface ? 0 : 4)) * kFloat;  // length, accumulated, (packed guides)
+      c.written = 4 * kFloat;                         // packed color + variance
       c.ops = kVarianceSteady;
-      c.planes = "R length 1, packed guides 4, accumulated 4; W packed 4";
+      c.planes = "R length 1, accumulated 4 (background: + packed guides 4); W packed 4";
       break;
     case Stage::Atrous:
       if (p.iterations <= 0) break;

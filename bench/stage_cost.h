@@ -3,6 +3,12 @@
 // bandwidth, roofline floor and docs/benchmarks.md numbers come from. stage_cost.cpp lists, per
 // kernel, the planes it reads and writes (4-byte floats or mesh ids) and a hand count of its
 // floating-point operations.
+//
+// Checked: exact mode's plane counts, surface and background pixel, by
+// tests/bench_stage_cost_test.cpp, which runs each stage functor on the CPU and finds the planes
+// its output depends on and the planes it stores. Not checked: the operation counts (hand
+// counts), and fast mode (SvgfFast exists only under nvcc; its fused kernels are counted from
+// the same functors by hand).
 #include <string>
 
 #include "core/stage_times.h"

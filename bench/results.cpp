@@ -1,0 +1,103 @@
+#include "bench/results.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+namespace fs = std::filesystem;
+
+namespace svgf::bench {
+namespace {
+
+// Fields (JSON pointers) the writers read from every entry of a list.
+const char* const kTimingFields[] = {"/group",
+                                     "/key",
+                                     "/label",
+                                     "/input/width",
+                                     "/input/height",
+                                     "/input/pixels",
+                                     "/config",
+                                     "/frame_ms/filter/median",
+                                     "/frame_ms/filter/p95"};
+const char* const kQualityFields[] = {"/key", "/scene", "/mean", "/frames"};
+
+template <size_t N>
+void check_entries(const json& doc, const char* list, const char* const (&fields)[N],
+                   const fs::path& file) {
+  if (!doc.contains(list)) return;
+  if (!doc[list].is_array())
+    throw std::runtime_error(file.string() + ": \"" + list + "\" is not a list");
+  for (const json& e : doc[list]) {
+    if (e.contains("error")) continue;  // a failed run: kept in the file, never read
+    for (const char* f : fields)
+      if (!e.contains(json::json_pointer(f)))
+        throw std::runtime_error(file.string() + ": an entry of \"" + list + "\" (" +
+                                 e.value("key", std::string("no key")) + ") has no " + f);
+  }
+}
+
+// A suite's list `name`, or an empty one.
+const json& list(const json& suite, const char* name) {
+  static const json kNone = json::array();
+  const auto it = suite.find(name);
+  return it == suite.end() ? kNone : *it;
+}
+
+}  // namespace
+
+const json* Results::suite(const std::string& name) const {
+  auto it = suites.find(name);
+  return it == suites.end() ? nullptr : &it->second;
+}
+
+std::vector<const json*> Results::timings(const std::string& suite_name,
+                                          const std::string& section) const {
+  std::vector<const json*> v;
+  if (const json* s = suite(suite_name))
+    for (const json& e : list(*s, "timings"))
+      if (e.value("group", "") == section && !e.contains("error")) v.push_back(&e);
+  return v;
+}
+
+std::map<std::string, json> Results::quality(const std::string& key) const {
+  std::map<std::string, json> by_scene;
+  for (const char* s : {"gpu", "cpu"})
+    if (const json* doc = suite(s))
+      for (const json& e : list(*doc, "quality"))
+        if (e["key"] == key && !e.contains("error") &&
+            !by_scene.count(e["scene"].get<std::string>()))
+          by_scene[e["scene"].get<std::string>()] = e;
+  return by_scene;
+}
+
+Results load_results(const std::string& dir) {
+  Results r;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    const fs::path& file = entry.path();
+    if (file.extension() != ".json") continue;
+    std::ifstream in(file);
+    json doc = json::parse(in, nullptr, false);
+    if (doc.is_discarded()) throw std::runtime_error(file.string() + ": not valid JSON");
+    if (!doc.contains("suite")) continue;
+    if (!doc["suite"].is_string())
+      throw std::runtime_error(file.string() + ": \"suite\" is not a name");
+    check_entries(doc, "timings", kTimingFields, file);
+    check_entries(doc, "quality", kQualityFields, file);
+    const std::string name = doc["suite"].get<std::string>();  // before doc is moved from
+    r.suites[name] = std::move(doc);
+  }
+  if (r.suites.empty()) throw std::runtime_error("no suite results (cpu.json, gpu.json) in " + dir);
+  return r;
+}
+
+std::string size_of(const json& e) {
+  return std::to_string(e["input"]["width"].get<int>()) + "x" +
+         std::to_string(e["input"]["height"].get<int>());
+}
+double mpix(const json& e) { return e["input"]["pixels"].get<double>() / 1e6; }
+double median_ms(const json& e) { return e["frame_ms"]["filter"]["median"].get<double>(); }
+double p95_ms(const json& e) { return e["frame_ms"]["filter"]["p95"].get<double>(); }
+double num(const json& v) { return v.is_number() ? v.get<double>() : std::nan(""); }
+
+}  // namespace svgf::bench

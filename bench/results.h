@@ -1,0 +1,43 @@
+#pragma once
+// The suite results (cpu.json, gpu.json from `svgf-bench suite`) as the chart tables, the
+// summary and the targets read them: loaded and checked once, then looked up by suite, section
+// and configuration key.
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace svgf::bench {
+
+using json = nlohmann::json;
+
+// Keys of the default configurations, which the per-scene curves and tables single out.
+inline const char* const kDefaultCpu = "svgf cpu exact it4 tap1";
+inline const char* const kDefaultExact = "svgf cuda exact it4 tap1";
+inline const char* const kDefaultFast = "svgf cuda fast it4 tap1";
+
+struct Results {
+  std::map<std::string, json> suites;  // by suite name ("cpu", "gpu")
+
+  const json* suite(const std::string& name) const;
+  // A section's timing entries, without those that failed, in file order.
+  std::vector<const json*> timings(const std::string& suite, const std::string& section) const;
+  // Per-scene quality entries of configuration `key`, each scene from the first suite (gpu,
+  // then cpu) that has it.
+  std::map<std::string, json> quality(const std::string& key) const;
+};
+
+// Every suite JSON in `dir` (files without a "suite" member are not suite results and are
+// skipped). A file that does not parse, or an entry without a field the writers read, is an
+// error naming the file.
+Results load_results(const std::string& dir);
+
+// One timing entry.
+std::string size_of(const json& e);  // "1920x1080"
+double mpix(const json& e);          // megapixels
+double median_ms(const json& e);     // filter stages, median per frame
+double p95_ms(const json& e);
+// A JSON value as a number, NaN when it is none (a missing metric).
+double num(const json& v);
+
+}  // namespace svgf::bench

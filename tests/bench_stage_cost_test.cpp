@@ -1,0 +1,335 @@
+// bench/stage_cost.cpp's plane counts checked against the kernels: each exact-mode SVGF stage
+// functor runs on a small steady-state frame (a surface everywhere, history old enough, the four
+// bilinear reprojection taps passing) whose every plane is its own buffer. A plane is read when
+// changing it changes the output at a probe pixel, and written when the kernel overwrites the
+// canary there. Operation counts are not checked (they stay hand-counted), nor fast mode (its
+// flavor exists only under nvcc).
+#include <catch2/catch.hpp>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <deque>
+#include <functional>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "bench/stage_cost.h"
+#include "core/copy.h"
+#include "methods/svgf/atrous.h"
+#include "methods/svgf/demodulate.h"
+#include "methods/svgf/flavors.h"
+#include "methods/svgf/remodulate.h"
+#include "methods/svgf/reproject.h"
+#include "methods/svgf/variance.h"
+
+using namespace svgf;
+using bench::Stage;
+
+namespace {
+
+constexpr int kW = 40, kH = 40;  // room for the widest a-trous footprint (step 8) at the probes
+struct Pixel {
+  int x, y;
+};
+// Surface probes: at A the depth tolerance of the reprojection taps needs |depth_dx|, at B
+// |depth_dy| (the tolerance takes the larger), so each derivative changes some output.
+const std::vector<Pixel> kSurface = {{20, 20}, {23, 17}};
+const std::vector<Pixel> kBackground = {{10, 30}};
+
+// Deterministic noise in [0, 1) per pixel and plane.
+float noise(int x, int y, uint32_t salt) {
+  uint32_t h = static_cast<uint32_t>(x) * 73856093u ^ static_cast<uint32_t>(y) * 19349663u ^
+               salt * 83492791u;
+  h ^= h >> 13;
+  h *= 0x5bd1e995u;
+  h ^= h >> 15;
+  return static_cast<float>(h & 0xffffffu) / 16777216.f;
+}
+
+bool is_background(int x, int y) {
+  for (const Pixel& p : kBackground)
+    if (p.x == x && p.y == y) return true;
+  return false;
+}
+float surface_depth(int x, int y) {
+  return is_background(x, y) ? 0.f : 5.f + 0.01f * x + 0.01f * y + 0.01f * noise(x, y, 1);
+}
+
+// Planes, each its own buffer: inputs the kernel may read, outputs it may write.
+class Rig {
+ public:
+  float* input(const std::string& name, const std::function<float(int, int)>& fill) {
+    Plane& p = add(inputs_, name);
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x) p.f[y * kW + x] = fill(x, y);
+    return p.f.data();
+  }
+  float* input(const std::string& name, float lo, float hi) {
+    const uint32_t salt = static_cast<uint32_t>(std::hash<std::string>()(name));
+    return input(name, [&](int x, int y) { return lo + (hi - lo) * noise(x, y, salt); });
+  }
+  ConstRgbView input_rgb(const std::string& name, float lo, float hi) {
+    return {input(name + ".r", lo, hi), input(name + ".g", lo, hi), input(name + ".b", lo, hi)};
+  }
+  uint32_t* ids(const std::string& name, uint32_t value) {
+    Plane& p = add(inputs_, name);
+    p.id.assign(p.f.size(), value);
+    return p.id.data();
+  }
+  float* output(const std::string& name) { return add(outputs_, name).f.data(); }
+  RgbView output_rgb(const std::string& name) {
+    return {output(name + ".r"), output(name + ".g"), output(name + ".b")};
+  }
+  float& at(float* plane, int x, int y) { return plane[y * kW + x]; }
+
+  // The inputs whose change changes the kernel's output at `probes`.
+  template <class Kernel>
+  std::vector<std::string> read(const Kernel& k, const std::vector<Pixel>& probes) {
+    const std::vector<uint32_t> before = run(k, probes);
+    std::vector<std::string> names;
+    for (Plane& p : inputs_) {
+      const Plane saved = p;
+      bool changed = false;
+      for (int how = 0; how < kPerturbations && !changed; ++how) {
+        perturb(p, how);
+        changed = run(k, probes) != before;
+        p = saved;
+      }
+      if (changed) names.push_back(p.name);
+    }
+    return names;
+  }
+
+  // The outputs the kernel stores into at `probes`.
+  template <class Kernel>
+  std::vector<std::string> written(const Kernel& k, const std::vector<Pixel>& probes) {
+    const std::vector<uint32_t> after = run(k, probes);
+    std::vector<std::string> names;
+    for (size_t o = 0; o < outputs_.size(); ++o)
+      for (size_t q = 0; q < probes.size(); ++q)
+        if (after[o * probes.size() + q] != kCanary) {
+          names.push_back(outputs_[o].name);
+          break;
+        }
+    return names;
+  }
+
+ private:
+  static constexpr uint32_t kCanary = 0x7fc0deadu;  // a NaN no kernel computes
+  struct Plane {
+    std::string name;
+    std::vector<float> f = std::vector<float>(kW * kH);
+    std::vector<uint32_t> id;  // mesh ids instead of floats
+  };
+
+  static Plane& add(std::deque<Plane>& planes, const std::string& name) {
+    planes.emplace_back();
+    planes.back().name = name;
+    return planes.back();
+  }
+
+  // Kinds of change, so that a plane read only through a test or a max still shows: scaled,
+  // zero, random, negated, and the plane moved by one pixel (which makes a background probe a
+  // surface like its neighbours, so that the filters take the path that shows the change).
+  static constexpr int kPerturbations = 5;
+  static void perturb(Plane& p, int how) {
+    const size_t n = p.f.size();
+    if (how == 4) {
+      std::rotate(p.f.begin(), p.f.begin() + 1, p.f.end());
+      if (!p.id.empty()) std::rotate(p.id.begin(), p.id.begin() + 1, p.id.end());
+      return;
+    }
+    for (size_t i = 0; i < n; ++i) {
+      const float r = noise(static_cast<int>(i), how, 99);
+      if (!p.id.empty()) {
+        const uint32_t v = p.id[i];
+        p.id[i] = how == 0 ? v + 1 : how == 1 ? 0 : how == 2 ? static_cast<uint32_t>(r * 1e6f) : ~v;
+        continue;
+      }
+      const float v = p.f[i];
+      p.f[i] = how == 0 ? v * 1.5f + 0.25f : how == 1 ? 0.f : how == 2 ? 20.f * r - 10.f : -v;
+    }
+  }
+
+  // Every output's bits at the probes after running the kernel there over canaries.
+  template <class Kernel>
+  std::vector<uint32_t> run(const Kernel& k, const std::vector<Pixel>& probes) {
+    float canary;
+    std::memcpy(&canary, &kCanary, sizeof canary);
+    for (Plane& o : outputs_) std::fill(o.f.begin(), o.f.end(), canary);
+    for (const Pixel& p : probes) k(p.x, p.y);
+    std::vector<uint32_t> bits;
+    for (const Plane& o : outputs_)
+      for (const Pixel& p : probes) {
+        uint32_t b;
+        std::memcpy(&b, &o.f[p.y * kW + p.x], sizeof b);
+        bits.push_back(b);
+      }
+    return bits;
+  }
+
+  std::deque<Plane> inputs_, outputs_;  // a deque keeps the planes where they are
+};
+
+// A frame's guides, every plane separate. `prev`: the previous frame's, whose depth at the
+// surface probes' four reprojection taps passes only with the probe's larger depth derivative.
+GuideView guides(Rig& rig, const std::string& name, bool prev) {
+  float* depth = rig.input(name + ".depth", surface_depth);
+  float* depth_dx = rig.input(name + ".depth_dx", 0.004f, 0.006f);
+  float* depth_dy = rig.input(name + ".depth_dy", 0.004f, 0.006f);
+  for (size_t k = 0; k < kSurface.size(); ++k) {
+    const Pixel p = kSurface[k];
+    // Tolerance 10 |d| + 0.03 z with z about 5.4: 0.36 with the larger derivative (0.02),
+    // 0.17 with the smaller (0.001); the previous frame's taps lie 0.25 deeper.
+    rig.at(k == 0 ? depth_dx : depth_dy, p.x, p.y) = 0.02f;
+    rig.at(k == 0 ? depth_dy : depth_dx, p.x, p.y) = 0.001f;
+    if (!prev) continue;
+    const int x0 = p.x, y0 = p.y - 1;  // floor of (x + motion_x, y + motion_y)
+    for (int t = 0; t < 4; ++t)
+      rig.at(depth, x0 + (t & 1), y0 + (t >> 1)) = surface_depth(p.x, p.y) + 0.25f;
+  }
+  const auto normal = [](int x, int y, int c) {
+    const float v[3] = {0.1f * noise(x, y, 2), 0.1f * noise(x, y, 3), 1.f};
+    return v[c] / std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  };
+  GuideView g;
+  g.width = kW;
+  g.height = kH;
+  g.depth = depth;
+  g.depth_dx = depth_dx;
+  g.depth_dy = depth_dy;
+  g.normal = {rig.input(name + ".normal.x", [&](int x, int y) { return normal(x, y, 0); }),
+              rig.input(name + ".normal.y", [&](int x, int y) { return normal(x, y, 1); }),
+              rig.input(name + ".normal.z", [&](int x, int y) { return normal(x, y, 2); })};
+  g.mesh_id = rig.ids(name + ".mesh_id", 7);
+  g.motion_x = rig.input(name + ".motion_x", 0.3f, 0.4f);
+  g.motion_y = rig.input(name + ".motion_y", -0.5f, -0.4f);
+  return g;
+}
+
+IllumVarView output_illum_var(Rig& rig, const std::string& name) {
+  return {rig.output_rgb(name), rig.output(name + ".variance")};
+}
+ConstIllumVarView input_illum_var(Rig& rig, const std::string& name) {
+  return {rig.input_rgb(name, 0.2f, 2.f), rig.input(name + ".variance", 0.01f, 0.1f)};
+}
+
+// The counts of `stage` the model gives a pixel, in planes of 4 bytes; per iteration for the
+// a-trous.
+struct Planes {
+  double read, written;
+};
+Planes model(Stage stage, bool emission, bool surface) {
+  const SvgfParams p;
+  const bench::StageCost c =
+      bench::stage_cost(Mode::Exact, stage, p, emission, surface ? 1.0 : 0.0);
+  const double per = stage == Stage::Atrous ? 4.0 * p.iterations : 4.0;
+  return {c.read / per, c.written / per};
+}
+
+template <class Kernel>
+void require_model(Rig& rig, const Kernel& k, Stage stage, bool emission, bool surface) {
+  const std::vector<Pixel>& probes = surface ? kSurface : kBackground;
+  const std::vector<std::string> read = rig.read(k, probes);
+  const std::vector<std::string> written = rig.written(k, probes);
+  const Planes m = model(stage, emission, surface);
+  std::string r, w;
+  for (const std::string& n : read) r += n + " ";
+  for (const std::string& n : written) w += n + " ";
+  INFO(bench::stage_name(stage) << (surface ? ", surface" : ", background")
+                                << (emission ? ", emission" : "") << ": read " << r << "; written "
+                                << w);
+  CHECK(static_cast<double>(read.size()) == m.read);
+  CHECK(static_cast<double>(written.size()) == m.written);
+}
+
+}  // namespace
+
+TEST_CASE("stage cost: demodulate's planes are the kernel's", "[bench][stage_cost]") {
+  for (bool emission : {false, true}) {
+    Rig rig;
+    const DemodulateKernel k{kW, rig.input_rgb("color", 0.5f, 2.f),
+                             rig.input_rgb("albedo", 0.2f, 0.9f),
+                             emission ? rig.input_rgb("emission", 0.f, 0.2f) : ConstRgbView(),
+                             rig.output_rgb("illumination")};
+    require_model(rig, k, Stage::Demodulate, emission, true);
+  }
+}
+
+TEST_CASE("stage cost: reproject's planes are the kernel's", "[bench][stage_cost]") {
+  Rig rig;
+  ReprojectKernel k;
+  k.guides = guides(rig, "guides", false);
+  k.prev_guides = guides(rig, "prev_guides", true);
+  k.illumination = rig.input_rgb("illumination", 0.1f, 2.f);
+  k.prev_color = rig.input_rgb("prev_color", 0.1f, 2.f);
+  k.prev_moment1 = rig.input("prev_moment1", 0.5f, 1.5f);
+  k.prev_moment2 = rig.input("prev_moment2", 2.5f, 3.f);
+  k.prev_history = rig.input("prev_history", [](int, int) { return 10.f; });
+  k.has_history = true;
+  k.accumulated = output_illum_var(rig, "accumulated");
+  k.moment1 = rig.output("moment1");
+  k.moment2 = rig.output("moment2");
+  k.history = rig.output("history");
+  require_model(rig, k, Stage::Reproject, false, true);
+  require_model(rig, k, Stage::Reproject, false, false);
+}
+
+// Variance and a-trous run as the pipeline runs them, with the normal weight's power chosen
+// from the parameters.
+template <class Body>
+void with_power(const Body& body) {
+  SvgfExact::with_normal_power(SvgfParams().phi_normal, body);
+}
+
+TEST_CASE("stage cost: the variance estimate's planes are the kernel's", "[bench][stage_cost]") {
+  // Only surface pixels: on a background pixel the history length and depth choose between two
+  // branches that both pass the accumulation through, which no change of theirs can show.
+  with_power([](const auto& power) {
+    using Power = std::decay_t<decltype(power)>;
+    Rig rig;
+    const VarianceEstimate<SvgfExact, Power> k{guides(rig, "guides", false),
+                                               input_illum_var(rig, "accumulated"),
+                                               rig.input("moment1", 0.5f, 1.5f),
+                                               rig.input("moment2", 2.5f, 3.f),
+                                               rig.input("history", [](int, int) { return 10.f; }),
+                                               output_illum_var(rig, "filtered"),
+                                               SvgfParams()};
+    require_model(rig, k, Stage::Variance, false, true);
+  });
+}
+
+TEST_CASE("stage cost: an a-trous iteration's planes are the kernel's", "[bench][stage_cost]") {
+  with_power([](const auto& power) {
+    using Power = std::decay_t<decltype(power)>;
+    for (int step = 1; step < (1 << SvgfParams().iterations); step *= 2) {
+      CAPTURE(step);
+      Rig rig;
+      const AtrousIteration<SvgfExact, Power> k{guides(rig, "guides", false),
+                                                input_illum_var(rig, "in"),
+                                                output_illum_var(rig, "out"), step, SvgfParams()};
+      require_model(rig, k, Stage::Atrous, false, true);
+      require_model(rig, k, Stage::Atrous, false, false);
+    }
+  });
+}
+
+TEST_CASE("stage cost: the feedback copy's planes are the kernel's", "[bench][stage_cost]") {
+  Rig rig;
+  const CopyRgbKernel k{kW, rig.input_rgb("filtered", 0.1f, 2.f), rig.output_rgb("next_color")};
+  require_model(rig, k, Stage::Feedback, false, true);
+}
+
+TEST_CASE("stage cost: remodulate's planes are the kernel's", "[bench][stage_cost]") {
+  for (bool emission : {false, true}) {
+    Rig rig;
+    const RemodulateSink sink{rig.input_rgb("albedo", 0.2f, 0.9f),
+                              emission ? rig.input_rgb("emission", 0.f, 0.2f) : ConstRgbView(),
+                              rig.output_rgb("output")};
+    const ForwardKernel<ConstIllumVarView, RemodulateSink> k{kW, input_illum_var(rig, "filtered"),
+                                                             sink};
+    require_model(rig, k, Stage::Remodulate, emission, true);
+  }
+}
