@@ -2,6 +2,7 @@
 // Where an a-trous iteration's result can go besides the next iteration's buffer, for the fused
 // pipeline (fast mode): the remodulated output (RemodulateSink, methods/svgf/remodulate.h), and a
 // copy into the color history.
+#include "core/sink.h"
 #include "core/views.h"
 #include "methods/svgf/remodulate.h"
 
@@ -14,6 +15,13 @@ struct FeedbackTee {
   RgbView color_history;
   SVGF_HD void store(int i, ColorVar v) const {
     out.store(i, v);
+    color_history.store(i, v.color);
+  }
+  // Its target's inputs (core/sink.h).
+  SVGF_HD auto inputs(int i) const { return sink_inputs(out, i); }
+  template <class In>
+  SVGF_HD void store(const In& in, int i, ColorVar v) const {
+    store_with(out, in, i, v);
     color_history.store(i, v.color);
   }
 };
