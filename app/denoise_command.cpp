@@ -34,12 +34,12 @@ const char* const kDenoiseUsage =
     "and report.csv (per-frame time, replaced samples, PSNR and relMSE against the reference).\n"
     "\n"
     "options:\n"
-    "  --method svgf|gaussian    denoising method (default svgf)\n"
+    "  --method svgf|gaussian|wavelet  denoising method (default svgf)\n"
     "  --backend cpu|cuda|auto   where to run (default auto: CUDA if a device is present)\n"
     "  --mode exact|fast         exact: bitwise CPU == GPU; fast: GPU only (default exact)\n"
     "  --threads N               CPU threads, 0 = all cores (default 0)\n"
     "  --frames N                denoise only the first N frames\n"
-    "  --iterations N            a-trous iterations (default 4)\n"
+    "  --iterations N            svgf, wavelet: a-trous iterations (default 4)\n"
     "  --feedback-tap N          a-trous iteration fed back as history, -1 none (default 1)\n"
     "  --alpha A                 color temporal blend floor (default 0.05)\n"
     "  --moments-alpha A         moments temporal blend floor (default 0.2)\n"
@@ -48,6 +48,10 @@ const char* const kDenoiseUsage =
     "  --phi-depth X             depth edge-stopping, 0 = no depth term (default 1)\n"
     "  --sigma S                 gaussian: standard deviation in pixels (default 2)\n"
     "  --radius R                gaussian: taps either side, 0 = ceil(3 sigma) (default 0)\n"
+    "  --kernel-size K           wavelet: taps per axis, 3, 5, 7 or 9 (default 5)\n"
+    "  --sigma-depth S           wavelet: depth weight scale sigma_Z (default 1)\n"
+    "  --sigma-normal S          wavelet: normal weight exponent sigma_N (default 64)\n"
+    "  --sigma-luma S            wavelet: luma weight scale sigma_L (default 4)\n"
     "  --exposure E              preview exposure (default 1)\n"
     "  --no-preview              skip the PNG previews\n";
 
@@ -76,8 +80,15 @@ DenoiserConfig config_from(const Options& o) {
   GaussianParams& g = c.gaussian;
   g.sigma = o.get_float("sigma", g.sigma);
   g.radius = o.get_int("radius", g.radius, 0, 1024);
+  WaveletParams& v = c.wavelet;
+  v.iterations = o.get_int("iterations", v.iterations, 0, 12);
+  v.kernel_size = o.get_int("kernel-size", v.kernel_size, 3, 9);
+  v.sigma_depth = o.get_float("sigma-depth", v.sigma_depth);
+  v.sigma_normal = o.get_float("sigma-normal", v.sigma_normal);
+  v.sigma_luma = o.get_float("sigma-luma", v.sigma_luma);
   try {
     g.validate();
+    v.validate();
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
@@ -112,7 +123,8 @@ int denoise_command(const std::vector<std::string>& args) {
   const Options o(args,
                   {"method", "backend", "mode", "threads", "frames", "iterations", "feedback-tap",
                    "alpha", "moments-alpha", "phi-color", "phi-normal", "phi-depth", "sigma",
-                   "radius", "exposure"},
+                   "radius", "kernel-size", "sigma-depth", "sigma-normal", "sigma-luma",
+                   "exposure"},
                   {"no-preview", "help"});
   if (o.has("help")) {
     std::fputs(kDenoiseUsage, stdout);

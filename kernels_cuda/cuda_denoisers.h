@@ -7,6 +7,7 @@
 #include "core/denoiser.h"
 #include "methods/gaussian/params.h"
 #include "methods/svgf/params.h"
+#include "methods/wavelet/params.h"
 
 namespace svgf::cuda {
 
@@ -17,5 +18,7 @@ bool device_available(std::string* why_not = nullptr);
 std::unique_ptr<Denoiser> make_svgf_denoiser(const SvgfParams& params, const EngineConfig& config);
 std::unique_ptr<Denoiser> make_gaussian_denoiser(const GaussianParams& params,
                                                  const EngineConfig& config);
+std::unique_ptr<Denoiser> make_wavelet_denoiser(const WaveletParams& params,
+                                                const EngineConfig& config);
 
 }  // namespace svgf::cuda

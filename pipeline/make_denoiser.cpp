@@ -7,6 +7,7 @@
 
 #include "kernels_cpu/gaussian_cpu.h"
 #include "kernels_cpu/svgf_cpu.h"
+#include "kernels_cpu/wavelet_cpu.h"
 #if defined(SVGF_HAVE_CUDA)
 #include "kernels_cuda/cuda_denoisers.h"
 #endif
@@ -17,6 +18,7 @@ const char* to_string(Method m) {
   switch (m) {
     case Method::Svgf: return "svgf";
     case Method::Gaussian: return "gaussian";
+    case Method::Wavelet: return "wavelet";
   }
   return "?";
 }
@@ -33,7 +35,8 @@ const char* to_string(Mode m) { return m == Mode::Exact ? "exact" : "fast"; }
 Method parse_method(const std::string& s) {
   if (s == "svgf") return Method::Svgf;
   if (s == "gaussian") return Method::Gaussian;
-  throw std::invalid_argument("unknown method '" + s + "' (known: svgf, gaussian)");
+  if (s == "wavelet") return Method::Wavelet;
+  throw std::invalid_argument("unknown method '" + s + "' (known: svgf, gaussian, wavelet)");
 }
 Backend parse_backend(const std::string& s) {
   if (s == "cpu") return Backend::Cpu;
@@ -71,12 +74,14 @@ std::unique_ptr<Denoiser> make_denoiser(const DenoiserConfig& config) {
     switch (c.method) {
       case Method::Svgf: return cuda::make_svgf_denoiser(c.svgf, e);
       case Method::Gaussian: return cuda::make_gaussian_denoiser(c.gaussian, e);
+      case Method::Wavelet: return cuda::make_wavelet_denoiser(c.wavelet, e);
     }
 #endif
   }
   switch (c.method) {
     case Method::Svgf: return cpu::make_svgf_denoiser(c.svgf, e);
     case Method::Gaussian: return cpu::make_gaussian_denoiser(c.gaussian, e);
+    case Method::Wavelet: return cpu::make_wavelet_denoiser(c.wavelet, e);
   }
   throw std::invalid_argument("make_denoiser: unknown method");
 }

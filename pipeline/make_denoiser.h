@@ -8,13 +8,14 @@
 #include "core/denoiser.h"
 #include "methods/gaussian/params.h"
 #include "methods/svgf/params.h"
+#include "methods/wavelet/params.h"
 
 namespace svgf {
 
-enum class Method { Svgf, Gaussian };
+enum class Method { Svgf, Gaussian, Wavelet };
 
 const char* to_string(Method m);
-// Parse "svgf|gaussian"; throws std::invalid_argument naming the value and the known methods.
+// Parse "svgf|gaussian|wavelet"; throws std::invalid_argument naming the value and the known methods.
 Method parse_method(const std::string& s);
 
 // The engine settings every method shares, the method, and one parameter struct per method
@@ -23,6 +24,7 @@ struct DenoiserConfig : EngineConfig {
   Method method = Method::Svgf;
   SvgfParams svgf;          // methods/svgf/params.h
   GaussianParams gaussian;  // methods/gaussian/params.h
+  WaveletParams wavelet;    // methods/wavelet/params.h
 };
 
 // Throws std::invalid_argument for an impossible combination (fast mode on the CPU, bad

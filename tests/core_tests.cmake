@@ -1,9 +1,9 @@
 # Host-only tests: the deterministic math, the CPU row drivers, the test harness.
 svgf_add_tests(svgf_core_tests
   SOURCES det_math_test.cpp svgf_cpu_rows_test.cpp test_device_test.cpp LIBS svgf_cpu)
-# SVGF's stages, each test body on the CPU, CUDA exact and (where fast mode has its own
-# flavor of the stage) CUDA fast.
+# Every method's stages, each test body on the CPU, CUDA exact and (where fast mode has its
+# own arithmetic for the stage) CUDA fast.
 svgf_add_device_tests(svgf_stage_tests
   SOURCES svgf_demodulate_test.cpp svgf_reproject_test.cpp svgf_variance_test.cpp
-          svgf_atrous_test.cpp
-  LIBS svgf_cpu)
+          svgf_atrous_test.cpp wavelet_test.cpp
+  LIBS svgf_cpu svgf_pipeline)

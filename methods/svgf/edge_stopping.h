@@ -4,6 +4,7 @@
 // evaluated with the reciprocals 1/phi_l and 1/phi_z, shared by the 7x7 spatial variance
 // estimate and the a-trous iterations, on every backend and in every mode (Arith).
 #include "core/arith.h"
+#include "core/normal_weight.h"
 #include "core/det_math.h"
 #include "core/vec.h"
 
@@ -15,47 +16,6 @@ struct EdgeSample {
   Vec3 normal;
   float luminance;
 };
-
-// max(0, n.n')^phi_n. For phi_n = 2^m (the default 128 = 2^7, m <= 16) it is m squarings in
-// float: cheap, and the same bits whether m is known at run time (this struct, used by the
-// per-pixel kernels) or at compile time (NormalPowerFixed, used by the vectorized CPU rows).
-// Any other phi_n goes through det_pow.
-template <class Arith = ExactArith>
-struct NormalPower {
-  float phi = 128.f;
-  int squarings = -1;  // m when phi = 2^m, else -1
-  SVGF_HD static NormalPower of(float phi_normal) {
-    NormalPower p;
-    p.phi = phi_normal;
-    float v = 1.f;
-    for (int m = 0; m <= 16; ++m, v = v * 2.f)
-      if (phi_normal == v) p.squarings = m;
-    return p;
-  }
-  SVGF_HD float operator()(float d) const {
-    if (squarings < 0) return Arith::pow(d, phi);
-    for (int i = 0; i < squarings; ++i) d = d * d;
-    return d;
-  }
-};
-
-template <int M>
-struct NormalPowerFixed {
-  SVGF_HD static NormalPowerFixed of(float) { return NormalPowerFixed(); }
-  SVGF_HD float operator()(float d) const {
-    for (int i = 0; i < M; ++i) d = d * d;
-    return d;
-  }
-};
-
-// The normal term's base: n_p . n_q clamped to [0, 1] (Falcor's saturate). Unit normals give
-// at most 1, but normals stored as half floats reach |n|^2 = 1.0003, and uncapped, a same-face
-// neighbour would weigh up to 1.04 times the centre. A NaN normal zeroes the weight: exact mode
-// keeps the NaN (min_f/max_f) for the final select, fast mode's saturate makes it 0.
-template <class Arith>
-SVGF_HD float normal_cosine(Vec3 a, Vec3 b) {
-  return Arith::saturate(Arith::dot(a, b));
-}
 
 // inv_phi_z and inv_phi_l are the reciprocals of the depth and luminance tolerances for this
 // tap (computed once per pixel and tap, so the tap loop has no division). At the centre tap

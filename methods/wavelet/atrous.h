@@ -1,0 +1,79 @@
+#pragma once
+// Wavelet stage 4: one pass of the edge-avoiding a-trous wavelet filter (Dammertz et al. 2010,
+// Eq. 6-8, in the CIS 565 form of docs/wavelet.md): taps on a kernel_size^2 grid spaced `step`
+// = 2^pass pixels apart, binomial weights h, each times
+//   W = W_Z W_N W_L = exp(-|Z_p - Z_q| / (sigma_Z + eps) - |L_p - L_q| / (sigma_L Dev_p + eps))
+//       * saturate(N_p . N_q)^sigma_N,
+// L the luma of the demodulated noisy color and Dev its deviation (deviation.h), both fixed
+// over the passes. Taps outside the image are skipped and the weights renormalized (the
+// project's border rule); pixels without a surface (depth <= 0) pass through.
+#include "core/arith.h"
+#include "core/normal_weight.h"
+#include "core/views.h"
+
+namespace svgf {
+
+// Binomial weight of offset d (|d| <= size / 2) for a kernel of `size` taps per axis: row
+// `size - 1` of Pascal's triangle over 2^(size - 1). Every weight is an exact float.
+SVGF_HD float binomial_weight(int size, int d) {
+  const int a = d < 0 ? -d : d;
+  switch (size) {
+    case 3: return a == 0 ? 0.5f : 0.25f;
+    case 5: return a == 0 ? 0.375f : (a == 1 ? 0.25f : 0.0625f);
+    case 7: return (a == 0 ? 20.f : a == 1 ? 15.f : a == 2 ? 6.f : 1.f) / 64.f;
+    default: return (a == 0 ? 70.f : a == 1 ? 56.f : a == 2 ? 28.f : a == 3 ? 8.f : 1.f) / 256.f;
+  }
+}
+
+template <class Arith, class Power>
+struct WaveletIteration {
+  GuideView guides;
+  ConstRgbView in;
+  RgbView out;
+  const float* luma = nullptr;
+  const float* deviation = nullptr;
+  int step = 1;
+  int kernel_size = 5;
+  float inv_sigma_depth = 1.f;  // 1 / (sigma_depth + epsilon)
+  float sigma_luma = 4.f;
+  float epsilon = 0.01f;
+  Power normal_power;
+
+  SVGF_HD void operator()(int x, int y) const {
+    const int i = guides.index(x, y);
+    const Vec3 center = in.load(i);
+    const float depth = guides.depth[i];
+    if (!(depth > 0.f)) {  // no surface: nothing to filter against
+      out.store(i, center);
+      return;
+    }
+    const Vec3 normal = guides.normal.load(i);
+    const float l = luma[i];
+    const float inv_sigma_l = Arith::recip(sigma_luma * deviation[i] + epsilon);
+    const int r = kernel_size / 2;
+    const float k0 = binomial_weight(kernel_size, 0);
+    float weight = k0 * k0;  // the centre: W = 1
+    Vec3 sum = center * weight;
+    for (int dy = -r; dy <= r; ++dy) {
+      for (int dx = -r; dx <= r; ++dx) {
+        if (dx == 0 && dy == 0) continue;
+        const int xq = x + dx * step, yq = y + dy * step;
+        if (!guides.inside(xq, yq)) continue;
+        const int j = guides.index(xq, yq);
+        const float e_z = Arith::abs(depth - guides.depth[j]) * inv_sigma_depth;
+        const float e_l = Arith::abs(l - luma[j]) * inv_sigma_l;
+        // NaN guide data drops the term (max_f) or zeroes the weight (the normal term).
+        const float w_n = normal_power(normal_cosine<Arith>(normal, guides.normal.load(j)));
+        const float w =
+            Arith::positive_part(Arith::exp_neg_sum(Arith::max(e_l, 0.f), Arith::max(e_z, 0.f)) *
+                                 w_n) *
+            (binomial_weight(kernel_size, dx) * binomial_weight(kernel_size, dy));
+        weight = weight + w;
+        sum = Arith::mad(in.load(j), w, sum);
+      }
+    }
+    out.store(i, Arith::divide_by(weight)(sum));
+  }
+};
+
+}  // namespace svgf
