@@ -80,3 +80,25 @@ TEST_CASE("svgf denoise: bad input is an error naming the file", "[app]") {
   fs::remove_all(in);
   fs::remove_all(out);
 }
+
+TEST_CASE("svgf denoise --method wavelet: its flags reach the filter, bad values name the flag",
+          "[app][wavelet]") {
+  const fs::path in = write_synthetic(scratch("wavelet_in"), 2), out = scratch("wavelet_out");
+  REQUIRE(app::denoise_command({in.string(), out.string(), "--backend", "cpu", "--method",
+                                "wavelet", "--kernel-size", "7", "--iterations", "3",
+                                "--sigma-luma", "2", "--no-preview"}) == 0);
+  std::ifstream f(out / "report.json");
+  const auto report = nlohmann::json::parse(f);
+  REQUIRE(report["denoiser"].get<std::string>().rfind("wavelet 7x7 cpu", 0) == 0);
+  REQUIRE(report["mean_psnr_denoised_db"].get<double>() >
+          report["mean_psnr_noisy_db"].get<double>() + 5);
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {"--kernel-size", "4"}, {"--sigma-depth", "-1"}, {"--sigma-normal", "-2"},
+      {"--sigma-luma", "0"}};
+  for (const auto& [flag, value] : bad)
+    REQUIRE_THROWS_WITH(app::denoise_command({in.string(), out.string(), "--backend", "cpu",
+                                              "--method", "wavelet", flag, value}),
+                        Catch::Contains(flag));
+  fs::remove_all(in);
+  fs::remove_all(out);
+}
