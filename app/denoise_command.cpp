@@ -34,7 +34,7 @@ const char* const kDenoiseUsage =
     "and report.csv (per-frame time, replaced samples, PSNR and relMSE against the reference).\n"
     "\n"
     "options:\n"
-    "  --method svgf|gaussian|wavelet  denoising method (default svgf)\n"
+    "  --method M                svgf, gaussian, wavelet, jbf, jbf-atrous (default svgf)\n"
     "  --backend cpu|cuda|auto   where to run (default auto: CUDA if a device is present)\n"
     "  --mode exact|fast         exact: bitwise CPU == GPU; fast: GPU only (default exact)\n"
     "  --threads N               CPU threads, 0 = all cores (default 0)\n"
@@ -52,6 +52,12 @@ const char* const kDenoiseUsage =
     "  --sigma-depth S           wavelet: depth weight scale sigma_Z (default 1)\n"
     "  --sigma-normal S          wavelet: normal weight exponent sigma_N (default 64)\n"
     "  --sigma-luma S            wavelet: luma weight scale sigma_L (default 4)\n"
+    "  --jbf-radius R            jbf: window radius in pixels (default 16)\n"
+    "  --jbf-levels N            jbf-atrous: levels of 5x5 taps at 1, 2, 4, ... (default 4)\n"
+    "  --jbf-sigma-coord S       jbf: pixel distance scale (default 32)\n"
+    "  --jbf-sigma-color S       jbf: color distance scale (default 0.6)\n"
+    "  --jbf-sigma-normal S      jbf: normal angle scale, radians (default 0.1)\n"
+    "  --jbf-sigma-plane S       jbf: tangent-plane distance scale (default 0.1)\n"
     "  --exposure E              preview exposure (default 1)\n"
     "  --no-preview              skip the PNG previews\n";
 
@@ -86,9 +92,17 @@ DenoiserConfig config_from(const Options& o) {
   v.sigma_depth = o.get_float("sigma-depth", v.sigma_depth);
   v.sigma_normal = o.get_float("sigma-normal", v.sigma_normal);
   v.sigma_luma = o.get_float("sigma-luma", v.sigma_luma);
+  JbfParams& j = c.jbf;
+  j.radius = o.get_int("jbf-radius", j.radius, 1, 64);
+  j.levels = o.get_int("jbf-levels", c.method == Method::JbfAtrous ? 4 : 0, 0, 10);
+  j.sigma_coord = o.get_float("jbf-sigma-coord", j.sigma_coord);
+  j.sigma_color = o.get_float("jbf-sigma-color", j.sigma_color);
+  j.sigma_normal = o.get_float("jbf-sigma-normal", j.sigma_normal);
+  j.sigma_plane = o.get_float("jbf-sigma-plane", j.sigma_plane);
   try {
     g.validate();
     v.validate();
+    j.validate();
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
@@ -124,7 +138,8 @@ int denoise_command(const std::vector<std::string>& args) {
                   {"method", "backend", "mode", "threads", "frames", "iterations", "feedback-tap",
                    "alpha", "moments-alpha", "phi-color", "phi-normal", "phi-depth", "sigma",
                    "radius", "kernel-size", "sigma-depth", "sigma-normal", "sigma-luma",
-                   "exposure"},
+                   "jbf-radius", "jbf-levels", "jbf-sigma-coord", "jbf-sigma-color",
+                   "jbf-sigma-normal", "jbf-sigma-plane", "exposure"},
                   {"no-preview", "help"});
   if (o.has("help")) {
     std::fputs(kDenoiseUsage, stdout);

@@ -11,6 +11,7 @@ struct FrameInputs {
   ConstRgbView color;
   ConstRgbView albedo;
   ConstRgbView emission;  // no planes when the frame has no emission channel
+  ConstRgbView position;  // world positions, for methods that ask for them (else no planes)
 };
 
 }  // namespace svgf

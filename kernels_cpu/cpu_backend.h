@@ -6,7 +6,8 @@
 //   set_method_planes(n)                   how many planes the method allocates (for errors)
 //   float* plane(buffer, c); Image read(buffer)      its planes as views; a host copy
 //   bool resize(w, h)                      frame size (true when buffers must be reallocated)
-//   FrameInputs inputs(frame)              this frame's inputs on the backend's side
+//   FrameInputs inputs(frame, position)    this frame's inputs on the backend's side (world
+//                                          positions only when asked for)
 //   GuideView previous_guides()            the guides of the frame before (valid after one frame)
 //   RgbView output(out)                    where the frame's output goes
 //   void finish(frame, out)                after the frame: output to the host, guides kept
@@ -52,12 +53,14 @@ class CpuBackend {
   float* plane(Buffer& b, int c) const { return b.plane(c); }
   Image read(const Buffer& b) const { return b; }
 
-  FrameInputs inputs(const Frame& f) const {
+  // `position`: the method reads world positions (read in place: free here).
+  FrameInputs inputs(const Frame& f, bool position = false) const {
     FrameInputs in;
     in.guides = f.guides();
     in.color = f.color.rgb();
     in.albedo = f.albedo.rgb();
     if (!f.emission.empty()) in.emission = f.emission.rgb();
+    if (position) in.position = f.position.rgb();
     return in;
   }
 

@@ -63,6 +63,8 @@ class CudaBackend {
   void release() {
     for (int s = 0; s < 2; ++s) inputs_[s].resize(0);
     output_.resize(0);
+    position_.resize(0);
+    staging_position_.resize(0, "");
     staging_in_.resize(0, "");
     staging_out_.resize(0, "");
     width_ = height_ = 0;
@@ -91,7 +93,9 @@ class CudaBackend {
 
   // Uploads the frame: its planes copied into pinned memory, then one DMA transfer, timed as
   // the engine's upload stage.
-  FrameInputs inputs(const Frame& in) {
+  // `position`: the method reads world positions, uploaded into a buffer of their own (made on
+  // the first request), so the methods that do not read them do not pay for them.
+  FrameInputs inputs(const Frame& in, bool position = false) {
     const size_t n = pixels();
     float* staging = staging_in_.get();
     auto stage = [&](const float* src, int plane) {
@@ -119,6 +123,15 @@ class CudaBackend {
     f.color = rgb(inputs_[slot_], kColor);
     f.albedo = rgb(inputs_[slot_], kAlbedo);
     if (emission) f.emission = rgb(inputs_[slot_], kEmission);
+    if (position) {
+      if (position_.size() != 3 * n) {
+        allocate(position_, 3, "world positions");
+        staging_position_.resize(3 * n, "the pinned position staging buffer");
+      }
+      std::memcpy(staging_position_.get(), in.position.plane(0), 3 * n * sizeof(float));
+      position_.upload_async(staging_position_.get(), 3 * n, engine_.stream());
+      f.position = rgb(position_, 0);
+    }
     return f;
   }
   GuideView previous_guides() const { return guides(1 - slot_); }
@@ -193,8 +206,8 @@ class CudaBackend {
   int width_ = 0, height_ = 0;
   int slot_ = 0;  // input slot the next frame is uploaded into
   int method_planes_ = 0;
-  Buffer inputs_[2], output_;
-  PinnedBuffer<float> staging_in_, staging_out_;
+  Buffer inputs_[2], output_, position_;
+  PinnedBuffer<float> staging_in_, staging_out_, staging_position_;
 };
 
 }  // namespace svgf::cuda

@@ -6,6 +6,7 @@
 
 #include "core/denoiser.h"
 #include "methods/gaussian/params.h"
+#include "methods/jbf/params.h"
 #include "methods/svgf/params.h"
 #include "methods/wavelet/params.h"
 
@@ -20,5 +21,6 @@ std::unique_ptr<Denoiser> make_gaussian_denoiser(const GaussianParams& params,
                                                  const EngineConfig& config);
 std::unique_ptr<Denoiser> make_wavelet_denoiser(const WaveletParams& params,
                                                 const EngineConfig& config);
+std::unique_ptr<Denoiser> make_jbf_denoiser(const JbfParams& params, const EngineConfig& config);
 
 }  // namespace svgf::cuda

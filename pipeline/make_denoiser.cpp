@@ -6,6 +6,7 @@
 #include <string>
 
 #include "kernels_cpu/gaussian_cpu.h"
+#include "kernels_cpu/jbf_cpu.h"
 #include "kernels_cpu/svgf_cpu.h"
 #include "kernels_cpu/wavelet_cpu.h"
 #if defined(SVGF_HAVE_CUDA)
@@ -19,6 +20,8 @@ const char* to_string(Method m) {
     case Method::Svgf: return "svgf";
     case Method::Gaussian: return "gaussian";
     case Method::Wavelet: return "wavelet";
+    case Method::Jbf: return "jbf";
+    case Method::JbfAtrous: return "jbf-atrous";
   }
   return "?";
 }
@@ -36,7 +39,10 @@ Method parse_method(const std::string& s) {
   if (s == "svgf") return Method::Svgf;
   if (s == "gaussian") return Method::Gaussian;
   if (s == "wavelet") return Method::Wavelet;
-  throw std::invalid_argument("unknown method '" + s + "' (known: svgf, gaussian, wavelet)");
+  if (s == "jbf") return Method::Jbf;
+  if (s == "jbf-atrous") return Method::JbfAtrous;
+  throw std::invalid_argument("unknown method '" + s +
+                              "' (known: svgf, gaussian, wavelet, jbf, jbf-atrous)");
 }
 Backend parse_backend(const std::string& s) {
   if (s == "cpu") return Backend::Cpu;
@@ -66,6 +72,9 @@ std::unique_ptr<Denoiser> make_denoiser(const DenoiserConfig& config) {
     // Fast mode is a GPU mode; on the CPU fallback the exact pipeline is what exists.
     if (c.backend == Backend::Cpu) c.mode = Mode::Exact;
   }
+  // jbf-atrous is the joint bilateral filter in its a-trous form (JbfParams::levels > 0).
+  if (c.method == Method::JbfAtrous && c.jbf.levels <= 0) c.jbf.levels = 4;
+  if (c.method == Method::Jbf) c.jbf.levels = 0;
   const EngineConfig& e = c;
   if (c.backend == Backend::Cuda) {
     std::string why;
@@ -75,6 +84,8 @@ std::unique_ptr<Denoiser> make_denoiser(const DenoiserConfig& config) {
       case Method::Svgf: return cuda::make_svgf_denoiser(c.svgf, e);
       case Method::Gaussian: return cuda::make_gaussian_denoiser(c.gaussian, e);
       case Method::Wavelet: return cuda::make_wavelet_denoiser(c.wavelet, e);
+      case Method::Jbf:
+      case Method::JbfAtrous: return cuda::make_jbf_denoiser(c.jbf, e);
     }
 #endif
   }
@@ -82,6 +93,8 @@ std::unique_ptr<Denoiser> make_denoiser(const DenoiserConfig& config) {
     case Method::Svgf: return cpu::make_svgf_denoiser(c.svgf, e);
     case Method::Gaussian: return cpu::make_gaussian_denoiser(c.gaussian, e);
     case Method::Wavelet: return cpu::make_wavelet_denoiser(c.wavelet, e);
+    case Method::Jbf:
+    case Method::JbfAtrous: return cpu::make_jbf_denoiser(c.jbf, e);
   }
   throw std::invalid_argument("make_denoiser: unknown method");
 }

@@ -7,15 +7,18 @@
 
 #include "core/denoiser.h"
 #include "methods/gaussian/params.h"
+#include "methods/jbf/params.h"
 #include "methods/svgf/params.h"
 #include "methods/wavelet/params.h"
 
 namespace svgf {
 
-enum class Method { Svgf, Gaussian, Wavelet };
+// Jbf and JbfAtrous are one filter (methods/jbf/) in its two forms: the full window and the
+// a-trous levels (JbfParams::levels; jbf-atrous with levels 0 takes 4).
+enum class Method { Svgf, Gaussian, Wavelet, Jbf, JbfAtrous };
 
 const char* to_string(Method m);
-// Parse "svgf|gaussian|wavelet"; throws std::invalid_argument naming the value and the known methods.
+// Parse "svgf|gaussian|wavelet|jbf|jbf-atrous"; throws std::invalid_argument naming the value and the known methods.
 Method parse_method(const std::string& s);
 
 // The engine settings every method shares, the method, and one parameter struct per method
@@ -25,6 +28,7 @@ struct DenoiserConfig : EngineConfig {
   SvgfParams svgf;          // methods/svgf/params.h
   GaussianParams gaussian;  // methods/gaussian/params.h
   WaveletParams wavelet;    // methods/wavelet/params.h
+  JbfParams jbf;            // methods/jbf/params.h (jbf and jbf-atrous)
 };
 
 // Throws std::invalid_argument for an impossible combination (fast mode on the CPU, bad

@@ -306,6 +306,49 @@ TEST_CASE("wavelet: CPU vs CUDA exact bitwise, fast within tolerance, every sour
   }
 }
 
+TEST_CASE("jbf: CPU vs CUDA exact bitwise, fast within tolerance, both forms, every source",
+          "[pipeline][jbf]") {
+  struct Setting {
+    Method method;
+    int radius, levels;
+    float sigma_color;
+  };
+  for (const Source& src : sources()) {
+    for (const Setting s : {Setting{Method::Jbf, 16, 0, 0.6f}, Setting{Method::Jbf, 5, 0, 2.f},
+                            Setting{Method::JbfAtrous, 16, 4, 0.6f},
+                            Setting{Method::JbfAtrous, 16, 2, 2.f}}) {
+      auto with = [&](Backend b, Mode m) {
+        DenoiserConfig c = config(b, m, 13, 7);
+        c.method = s.method;
+        c.jbf.radius = s.radius;
+        c.jbf.levels = s.levels;
+        c.jbf.sigma_color = s.sigma_color;
+        return make_denoiser(c);
+      };
+      auto cpu = with(Backend::Cpu, Mode::Exact);
+      auto exact = with(Backend::Cuda, Mode::Exact);
+      auto fast = with(Backend::Cuda, Mode::Fast);
+      for (int k = 0; k < std::min(src.frames, 2); ++k) {
+        const Frame f = src.frame(k);
+        const std::string where = src.name + ", frame " + std::to_string(k) + ", " +
+                                  cpu->description();
+        Image a, b, c;
+        cpu->denoise(f, a);
+        exact->denoise(f, b);
+        fast->denoise(f, c);
+        test::require_identical(a, b, where + ": jbf output (CPU vs CUDA exact)");
+        test::require_identical(cpu->read_buffer("sanitized"), exact->read_buffer("sanitized"),
+                                where + ": jbf sanitized");
+        INFO(where);
+        REQUIRE(fast->last_report().replaced_samples == exact->last_report().replaced_samples);
+        for (float v : c.data()) REQUIRE(std::isfinite(v));
+        REQUIRE(metrics::relmse(c, b) <= kFastMaxRelMse);
+        count_values(a);
+      }
+    }
+  }
+}
+
 TEST_CASE("determinism: two runs and three block shapes give the same bits, exact and fast",
           "[determinism]") {
   std::vector<Source> all = sources();

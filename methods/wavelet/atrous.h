@@ -8,22 +8,11 @@
 // over the passes. Taps outside the image are skipped and the weights renormalized (the
 // project's border rule); pixels without a surface (depth <= 0) pass through.
 #include "core/arith.h"
+#include "core/binomial.h"
 #include "core/normal_weight.h"
 #include "core/views.h"
 
 namespace svgf {
-
-// Binomial weight of offset d (|d| <= size / 2) for a kernel of `size` taps per axis: row
-// `size - 1` of Pascal's triangle over 2^(size - 1). Every weight is an exact float.
-SVGF_HD float binomial_weight(int size, int d) {
-  const int a = d < 0 ? -d : d;
-  switch (size) {
-    case 3: return a == 0 ? 0.5f : 0.25f;
-    case 5: return a == 0 ? 0.375f : (a == 1 ? 0.25f : 0.0625f);
-    case 7: return (a == 0 ? 20.f : a == 1 ? 15.f : a == 2 ? 6.f : 1.f) / 64.f;
-    default: return (a == 0 ? 70.f : a == 1 ? 56.f : a == 2 ? 28.f : a == 3 ? 8.f : 1.f) / 256.f;
-  }
-}
 
 template <class Arith, class Power>
 struct WaveletIteration {

@@ -1,0 +1,130 @@
+#pragma once
+// The joint bilateral filter (GAMES202 homework 5) behind the Denoiser interface, written once
+// over a backend (kernels_cpu/cpu_backend.h). A frame's data flow (the spatial filter; the
+// homework's temporal accumulation is not built yet, docs/jbf.md):
+//   sanitize  color -> sanitized, bad samples replaced by 0 and counted (core/sanitize.h)
+//   filter    full window: sanitized -> output, one pass of radius taps either side
+//   atrous    or: sanitized -> signal 0 -> signal 1 -> ... -> output, 5x5 taps at 1, 2, 4, ...
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/denoiser.h"
+#include "core/frame_inputs.h"
+#include "core/sanitize.h"
+#include "methods/jbf/filter.h"
+#include "methods/jbf/params.h"
+
+namespace svgf {
+
+namespace jbf_stage {
+inline constexpr const char* kSanitize = "sanitize";
+inline constexpr const char* kFilter = "filter";  // the full window
+inline constexpr const char* kAtrous = "atrous";  // the a-trous levels
+}  // namespace jbf_stage
+
+namespace jbf_buffer {
+inline constexpr const char* kSanitized = "sanitized";
+}  // namespace jbf_buffer
+
+struct JbfFrameBuffers {
+  FrameInputs in;  // with world positions
+  RgbView sanitized;
+  RgbView signal[2];
+  RgbView output;
+};
+
+template <class Arith, class Engine>
+void run_jbf_frame(Engine& engine, const JbfFrameBuffers& b, const JbfParams& p) {
+  namespace stage = jbf_stage;
+  const GuideView& g = b.in.guides;
+  const int w = g.width, h = g.height;
+  engine.run_counting(stage::kSanitize, SanitizeKernel{w, b.in.color, b.sanitized}, w, h);
+  const JbfScales scales = JbfScales::of(p);
+  if (!p.atrous()) {
+    engine.run(stage::kFilter,
+               JbfPass<Arith>{g, b.in.position, b.sanitized, b.output, p.radius, 1, false, scales},
+               w, h);
+    return;
+  }
+  ConstRgbView in = b.sanitized;
+  for (int level = 0; level < p.levels; ++level) {
+    const RgbView out = level + 1 == p.levels ? b.output : b.signal[level % 2];
+    engine.run(stage::kAtrous,
+               JbfPass<Arith>{g, b.in.position, in, out, 2, 1 << level, true, scales}, w, h);
+    in = out;
+  }
+}
+
+template <class Backend>
+class JbfDenoiser final : public Denoiser {
+ public:
+  JbfDenoiser(const JbfParams& params, const EngineConfig& config)
+      : params_(params), mode_(config.mode), backend_(config) {
+    params_.validate();
+    backend_.set_method_planes(3 + 3 + (params_.atrous() ? 6 : 0));
+  }
+
+  void denoise(const Frame& in, Image& out) override {
+    check_frame_consistent(in);
+    if (in.position.empty())
+      throw std::invalid_argument("frame " + std::to_string(in.index) +
+                                  ": jbf needs the 'position' channel (world positions)");
+    if (backend_.resize(in.width(), in.height())) {
+      backend_.allocate(sanitized_, 3, "jbf sanitized color");
+      if (params_.atrous()) {
+        backend_.allocate(signal_[0], 3, "jbf a-trous signal 0");
+        backend_.allocate(signal_[1], 3, "jbf a-trous signal 1");
+      }
+    }
+    auto& engine = backend_.engine();
+    engine.begin_frame();
+    JbfFrameBuffers b;
+    b.in = backend_.inputs(in, /*position=*/true);
+    b.sanitized = rgb(sanitized_);
+    if (params_.atrous()) {
+      b.signal[0] = rgb(signal_[0]);
+      b.signal[1] = rgb(signal_[1]);
+    }
+    b.output = backend_.output(out);
+#if defined(__CUDACC__)
+    if (mode_ == Mode::Fast)
+      run_jbf_frame<FastArith>(engine, b, params_);
+    else
+#endif
+      run_jbf_frame<ExactArith>(engine, b, params_);
+    backend_.finish(in, out);
+    report_.times = engine.times();
+    report_.replaced_samples = engine.counted();
+  }
+
+  void reset() override {}  // no history yet
+  const FrameReport& last_report() const override { return report_; }
+  std::string description() const override {
+    return (params_.atrous() ? "jbf-atrous " + std::to_string(params_.levels) + " levels "
+                             : "jbf r" + std::to_string(params_.radius) + " ") +
+           backend_.description();
+  }
+  std::vector<std::string> stages() const override {
+    return {jbf_stage::kSanitize, params_.atrous() ? jbf_stage::kAtrous : jbf_stage::kFilter};
+  }
+  std::vector<std::string> debug_buffers() const override { return {jbf_buffer::kSanitized}; }
+  Image read_buffer(std::string_view name) const override {
+    if (name != jbf_buffer::kSanitized) throw unknown_buffer("jbf", name, debug_buffers());
+    if (backend_.width() == 0) return Image();
+    return backend_.read(sanitized_);
+  }
+
+ private:
+  RgbView rgb(typename Backend::Buffer& b) {
+    return {backend_.plane(b, 0), backend_.plane(b, 1), backend_.plane(b, 2)};
+  }
+  JbfParams params_;
+  Mode mode_;
+  Backend backend_;
+  typename Backend::Buffer sanitized_, signal_[2];
+  FrameReport report_;
+};
+
+}  // namespace svgf
