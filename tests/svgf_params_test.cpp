@@ -6,6 +6,8 @@
 #include <cmath>
 #include <random>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <catch2/catch.hpp>
 
@@ -24,6 +26,9 @@ namespace {
 
 // The documented defaults (docs/svgf.md), written out.
 constexpr double kAlbedoEpsilon = 1e-3;
+constexpr double kAlpha = 0.05;
+constexpr double kMomentsAlpha = 0.2;
+constexpr double kReprojectMinWeight = 0.01;
 constexpr double kPhiColor = 10;
 constexpr double kPhiNormal = 128;
 constexpr double kPhiDepth = 1;
@@ -228,4 +233,98 @@ TEST_CASE("params: the reprojection normal test keeps n . n_prev exactly 0.9",
   const float nz = 0.9f, nx = std::sqrt(1.f - nz * nz);
   REQUIRE(history_after(0.01f, 2.f, make_vec3(nx, 0.f, nz)) == 2.f);
   REQUIRE(history_after(0.01f, 2.f, make_vec3(nx, 0.f, std::nextafter(nz, 0.f))) == 1.f);
+}
+
+namespace {
+
+// One ReprojectKernel pass with default parameters over a static w x h frame (depth 2, normal +z,
+// mesh 1): this frame's illumination `c`, the previous frame's color, moments and history
+// constant, except where `prev_mesh` (per pixel, may be empty) moves pixels to another mesh.
+// Every pixel's motion is (mx, my).
+struct ReprojectRun {
+  Image accumulated, moments, history;
+};
+ReprojectRun reproject_once(int w, int h, float c, float prev_c, float prev_m1, float prev_m2,
+                            const std::vector<float>& prev_history,
+                            const std::vector<uint32_t>& prev_mesh, float mx = 0.f,
+                            float my = 0.f) {
+  Frame cur = test::flat_frame(w, h), prev = test::flat_frame(w, h);
+  for (int i = 0; i < w * h; ++i) {
+    cur.motion.plane(0)[i] = mx;
+    cur.motion.plane(1)[i] = my;
+    if (!prev_mesh.empty()) prev.mesh_id[i] = prev_mesh[i];
+  }
+  Image illum(w, h, 3, c), prev_color(w, h, 3, prev_c), prev_moments(w, h, 2),
+      prev_hist(w, h, 1);
+  for (int i = 0; i < w * h; ++i) {
+    prev_moments.plane(0)[i] = prev_m1;
+    prev_moments.plane(1)[i] = prev_m2;
+    prev_hist.plane(0)[i] = prev_history[i];
+  }
+  ReprojectRun r{Image(w, h, 4), Image(w, h, 2), Image(w, h, 1)};
+  ReprojectKernel k;
+  k.guides = cur.guides();
+  k.prev_guides = prev.guides();
+  k.illumination = illum.rgb();
+  k.prev_color = prev_color.rgb();
+  k.prev_moment1 = prev_moments.plane(0);
+  k.prev_moment2 = prev_moments.plane(1);
+  k.prev_history = prev_hist.plane(0);
+  k.has_history = true;
+  k.accumulated = {r.accumulated.rgb(), r.accumulated.plane(3)};
+  k.moment1 = r.moments.plane(0);
+  k.moment2 = r.moments.plane(1);
+  k.history = r.history.plane(0);
+  cpu::for_each_pixel(w, h, k);
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("params: a long history is capped at 32 and blended with alpha 0.05 and 0.2",
+          "[params][reproject]") {
+  // Previous history 40 frames: the new length is min(40 + 1, 32) = 32, and since 1/32 is
+  // below both alphas, color blends with 0.05 and the moments with 0.2:
+  //   color 0.5 + (1.5 - 0.5) * 0.05 = 0.55,
+  //   m1 = 0.25 + (1.5 - 0.25) * 0.2 = 0.5,  m2 = 0.1 + (2.25 - 0.1) * 0.2 = 0.53,
+  //   variance = 0.53 - 0.5^2 = 0.28 (luminance of a grey 1.5 is 1.5).
+  // A previous history of 31 gives length exactly 32 too, and 30 gives 31 (below the cap).
+  const int w = 3, h = 3;
+  for (const auto& [prev_len, want_len] : {std::pair<float, float>{40.f, 32.f}, {31.f, 32.f},
+                                           {30.f, 31.f}}) {
+    const ReprojectRun r =
+        reproject_once(w, h, 1.5f, 0.5f, 0.25f, 0.1f, std::vector<float>(w * h, prev_len), {});
+    INFO("previous history " << prev_len);
+    REQUIRE(r.history.at(1, 1, 0) == want_len);
+    for (int ch = 0; ch < 3; ++ch)
+      REQUIRE(relative_difference(r.accumulated.at(1, 1, ch), 0.5 + 1.0 * kAlpha) < 1e-6);
+    const double m1 = 0.25 + (1.5 - 0.25) * kMomentsAlpha;
+    const double m2 = 0.1 + (2.25 - 0.1) * kMomentsAlpha;
+    REQUIRE(relative_difference(r.moments.at(1, 1, 0), m1) < 1e-6);
+    REQUIRE(relative_difference(r.moments.at(1, 1, 1), m2) < 1e-6);
+    REQUIRE(relative_difference(r.accumulated.at(1, 1, 3), m2 - m1 * m1) < 1e-5);
+  }
+}
+
+TEST_CASE("params: bilinear taps are kept down to a total weight of 0.01", "[params][reproject]") {
+  // Motion (1/8, fy) from pixel (2, 2) of a 5x5 frame: the bilinear taps are (2..3, 2..3), and
+  // only (3, 3), of weight fx * fy, is on this pixel's mesh; so is (1, 1), which only the 3x3
+  // fallback around the nearest pixel (2, 2) reaches. History 4 at (3, 3) and 2 at (1, 1): the
+  // bilinear read gives length 4 + 1 = 5, the fallback (4 + 2) / 2 + 1 = 4.
+  //   fy = 21/256: weight 21/2048 = 0.01025 >= 0.01, bilinear;
+  //   fy = 20/256: weight 20/2048 = 0.00977 <  0.01, fallback. (Both products exact in float.)
+  const int w = 5, h = 5;
+  std::vector<uint32_t> mesh(w * h, 7u);
+  std::vector<float> hist(w * h, 1.f);
+  mesh[3 * w + 3] = 1u;
+  hist[3 * w + 3] = 4.f;
+  mesh[1 * w + 1] = 1u;
+  hist[1 * w + 1] = 2.f;
+  REQUIRE(0.125 * 21 / 256 >= kReprojectMinWeight);
+  REQUIRE(0.125 * 20 / 256 < kReprojectMinWeight);
+  const ReprojectRun kept = reproject_once(w, h, 1.f, 1.f, 1.f, 1.f, hist, mesh, 0.125f, 21.f / 256);
+  REQUIRE(kept.history.at(2, 2, 0) == 5.f);
+  const ReprojectRun fallback =
+      reproject_once(w, h, 1.f, 1.f, 1.f, 1.f, hist, mesh, 0.125f, 20.f / 256);
+  REQUIRE(fallback.history.at(2, 2, 0) == 4.f);
 }
