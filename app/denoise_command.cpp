@@ -7,10 +7,13 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <set>
 #include <sstream>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
+#include "app/method_options.h"
 #include "app/options.h"
 #include "app/progress_bar.h"
 #include "pipeline/make_denoiser.h"
@@ -26,7 +29,10 @@ namespace fs = std::filesystem;
 
 namespace svgf::app {
 
-const char* const kDenoiseUsage =
+namespace {
+
+// The options before and after the method parameters (app/method_options.h).
+const char* const kUsageHead =
     "usage: svgf denoise IN_DIR OUT_DIR [options]\n"
     "\n"
     "Denoises the sequence in IN_DIR (frame_NNNN.exr + manifest.json) into OUT_DIR:\n"
@@ -38,28 +44,16 @@ const char* const kDenoiseUsage =
     "  --backend cpu|cuda|auto   where to run (default auto: CUDA if a device is present)\n"
     "  --mode exact|fast         exact: bitwise CPU == GPU; fast: GPU only (default exact)\n"
     "  --threads N               CPU threads, 0 = all cores (default 0)\n"
-    "  --frames N                denoise only the first N frames\n"
-    "  --iterations N            svgf, wavelet: a-trous iterations (default 4)\n"
-    "  --feedback-tap N          a-trous iteration fed back as history, -1 none (default 1)\n"
-    "  --alpha A                 color temporal blend floor (default 0.05)\n"
-    "  --moments-alpha A         moments temporal blend floor (default 0.2)\n"
-    "  --phi-color X             luminance edge-stopping (default 10)\n"
-    "  --phi-normal X            normal edge-stopping exponent (default 128)\n"
-    "  --phi-depth X             depth edge-stopping, 0 = no depth term (default 1)\n"
-    "  --sigma S                 gaussian: standard deviation in pixels (default 2)\n"
-    "  --radius R                gaussian: taps either side, 0 = ceil(3 sigma) (default 0)\n"
-    "  --kernel-size K           wavelet: taps per axis, 3, 5, 7 or 9 (default 5)\n"
-    "  --sigma-depth S           wavelet: depth weight scale sigma_Z (default 1)\n"
-    "  --sigma-normal S          wavelet: normal weight exponent sigma_N (default 64)\n"
-    "  --sigma-luma S            wavelet: luma weight scale sigma_L (default 4)\n"
-    "  --jbf-radius R            jbf: window radius in pixels (default 16)\n"
-    "  --jbf-levels N            jbf-atrous: levels of 5x5 taps at 1, 2, 4, ... (default 4)\n"
-    "  --jbf-sigma-coord S       jbf: pixel distance scale (default 32)\n"
-    "  --jbf-sigma-color S       jbf: color distance scale (default 0.6)\n"
-    "  --jbf-sigma-normal S      jbf: normal angle scale, radians (default 0.1)\n"
-    "  --jbf-sigma-plane S       jbf: tangent-plane distance scale (default 0.1)\n"
+    "  --frames N                denoise only the first N frames\n";
+const char* const kUsageTail =
     "  --exposure E              preview exposure (default 1)\n"
     "  --no-preview              skip the PNG previews\n";
+
+}  // namespace
+
+std::string denoise_usage() {
+  return std::string(kUsageHead) + kMethodParamUsage + kUsageTail;
+}
 
 namespace {
 
@@ -69,43 +63,7 @@ DenoiserConfig config_from(const Options& o) {
   c.backend = parse_backend(o.get("backend", "auto"));
   c.mode = parse_mode(o.get("mode", "exact"));
   c.threads = o.get_int("threads", 0, 0, 1024);
-  SvgfParams& p = c.svgf;
-  p.iterations = o.get_int("iterations", p.iterations, 0, 12);
-  p.feedback_tap = o.get_int("feedback-tap", p.feedback_tap, -1, 11);
-  p.alpha = o.get_float("alpha", p.alpha);
-  p.moments_alpha = o.get_float("moments-alpha", p.moments_alpha);
-  p.phi_color = o.get_float("phi-color", p.phi_color);
-  p.phi_normal = o.get_float("phi-normal", p.phi_normal);
-  p.phi_depth = o.get_float("phi-depth", p.phi_depth);
-  if (!(p.alpha > 0.f && p.alpha <= 1.f) || !(p.moments_alpha > 0.f && p.moments_alpha <= 1.f))
-    throw UsageError("--alpha and --moments-alpha must lie in (0, 1]");
-  const auto finite_at_least = [](float v, float lo) { return std::isfinite(v) && v >= lo; };
-  if (!finite_at_least(p.phi_depth, 0.f) || !finite_at_least(p.phi_normal, 0.f) ||
-      !(finite_at_least(p.phi_color, 0.f) && p.phi_color > 0.f))
-    throw UsageError("--phi-depth and --phi-normal must be finite and >= 0, --phi-color > 0");
-  GaussianParams& g = c.gaussian;
-  g.sigma = o.get_float("sigma", g.sigma);
-  g.radius = o.get_int("radius", g.radius, 0, 1024);
-  WaveletParams& v = c.wavelet;
-  v.iterations = o.get_int("iterations", v.iterations, 0, 12);
-  v.kernel_size = o.get_int("kernel-size", v.kernel_size, 3, 9);
-  v.sigma_depth = o.get_float("sigma-depth", v.sigma_depth);
-  v.sigma_normal = o.get_float("sigma-normal", v.sigma_normal);
-  v.sigma_luma = o.get_float("sigma-luma", v.sigma_luma);
-  JbfParams& j = c.jbf;
-  j.radius = o.get_int("jbf-radius", j.radius, 1, 64);
-  j.levels = o.get_int("jbf-levels", c.method == Method::JbfAtrous ? 4 : 0, 0, 10);
-  j.sigma_coord = o.get_float("jbf-sigma-coord", j.sigma_coord);
-  j.sigma_color = o.get_float("jbf-sigma-color", j.sigma_color);
-  j.sigma_normal = o.get_float("jbf-sigma-normal", j.sigma_normal);
-  j.sigma_plane = o.get_float("jbf-sigma-plane", j.sigma_plane);
-  try {
-    g.validate();
-    v.validate();
-    j.validate();
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
+  read_method_params(o, c);
   return c;
 }
 
@@ -134,15 +92,11 @@ std::string fixed(double v, int digits) {
 }  // namespace
 
 int denoise_command(const std::vector<std::string>& args) {
-  const Options o(args,
-                  {"method", "backend", "mode", "threads", "frames", "iterations", "feedback-tap",
-                   "alpha", "moments-alpha", "phi-color", "phi-normal", "phi-depth", "sigma",
-                   "radius", "kernel-size", "sigma-depth", "sigma-normal", "sigma-luma",
-                   "jbf-radius", "jbf-levels", "jbf-sigma-coord", "jbf-sigma-color",
-                   "jbf-sigma-normal", "jbf-sigma-plane", "exposure"},
-                  {"no-preview", "help"});
+  std::set<std::string> valued = {"method", "backend", "mode", "threads", "frames", "exposure"};
+  valued.insert(method_param_flags().begin(), method_param_flags().end());
+  const Options o(args, valued, {"no-preview", "help"});
   if (o.has("help")) {
-    std::fputs(kDenoiseUsage, stdout);
+    std::fputs(denoise_usage().c_str(), stdout);
     return 0;
   }
   if (o.positional().size() != 2) throw UsageError("denoise needs IN_DIR and OUT_DIR");

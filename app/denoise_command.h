@@ -4,7 +4,7 @@
 
 namespace svgf::app {
 
-extern const char* const kDenoiseUsage;
+std::string denoise_usage();
 // `svgf denoise IN_DIR OUT_DIR [options]`; returns the exit status.
 int denoise_command(const std::vector<std::string>& args);
 

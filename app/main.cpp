@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
     throw svgf::app::UsageError("unknown command '" + args[0] + "'");
   } catch (const svgf::app::UsageError& e) {
     std::fprintf(stderr, "svgf: %s\n%s", e.what(),
-                 args[0] == "denoise" ? svgf::app::kDenoiseUsage : kUsage);
+                 args[0] == "denoise" ? svgf::app::denoise_usage().c_str() : kUsage);
     return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "svgf: error: %s\n", e.what());

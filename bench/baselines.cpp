@@ -17,34 +17,41 @@ namespace svgf::bench {
 std::string Baseline::label() const {
   std::ostringstream s;
   s << name;
-  if (name == "gaussian") s << " s" << p1;
-  if (name == "bilateral" || name == "joint-bilateral") s << " d" << p1 << " c" << p2;
-  if (name == "nlmeans") s << " h" << p1;
+  if (name == "cv-gaussian") s << " s" << p1;
+  if (name == "cv-bilateral" || name == "cv-joint-bilateral") s << " d" << p1 << " c" << p2;
+  if (name == "cv-nlmeans") s << " h" << p1;
   return s.str();
 }
 
-bool is_baseline(const std::string& method) {
-  return method == "gaussian" || method == "bilateral" || method == "joint-bilateral" ||
-         method == "nlmeans";
+bool is_baseline(const std::string& method) { return method.rfind("cv-", 0) == 0; }
+
+std::string baseline_names() {
+  std::vector<std::string> seen;
+  std::string names;
+  for (const Baseline& b : default_baselines())
+    if (std::find(seen.begin(), seen.end(), b.name) == seen.end()) {
+      seen.push_back(b.name);
+      names += (names.empty() ? "" : ", ") + b.name;
+    }
+  return names;
 }
 
 std::vector<Baseline> default_baselines() {
   return {
-      {"gaussian", 1.0, 0, 0},
-      {"gaussian", 3.0, 0, 0},
+      {"cv-gaussian", 1.0, 0, 0},
+      {"cv-gaussian", 3.0, 0, 0},
       // Color sigmas in linear radiance for the HDR color, in albedo units for the guide.
-      {"bilateral", 9, 0.5, 4.0},
-      {"joint-bilateral", 9, 0.1, 4.0},
+      {"cv-bilateral", 9, 0.5, 4.0},
+      {"cv-joint-bilateral", 9, 0.1, 4.0},
       // On 8-bit Reinhard-mapped color (fastNlMeansDenoisingColored takes 8-bit only).
-      {"nlmeans", 10, 10, 21},
+      {"cv-nlmeans", 10, 10, 21},
   };
 }
 
 Baseline baseline_by_name(const std::string& name) {
   for (const Baseline& b : default_baselines())
     if (b.name == name) return b;
-  throw std::invalid_argument("unknown method '" + name +
-                              "' (known: svgf, gaussian, bilateral, joint-bilateral, nlmeans)");
+  throw std::invalid_argument("unknown baseline '" + name + "' (known: " + baseline_names() + ")");
 }
 
 #if defined(SVGF_BENCH_HAVE_OPENCV)
@@ -109,14 +116,14 @@ cv::Mat from_8bit(const cv::Mat& ldr) {
 void run_baseline(const Baseline& b, const Frame& in, Image& out) {
   const cv::Mat src = to_mat(in.color, true);
   cv::Mat dst;
-  if (b.name == "gaussian") {
+  if (b.name == "cv-gaussian") {
     cv::GaussianBlur(src, dst, cv::Size(0, 0), b.p1);
-  } else if (b.name == "bilateral") {
+  } else if (b.name == "cv-bilateral") {
     cv::bilateralFilter(src, dst, static_cast<int>(b.p1), b.p2, b.p3);
-  } else if (b.name == "joint-bilateral") {
+  } else if (b.name == "cv-joint-bilateral") {
     cv::ximgproc::jointBilateralFilter(to_mat(in.albedo, true), src, dst, static_cast<int>(b.p1),
                                        b.p2, b.p3);
-  } else if (b.name == "nlmeans") {
+  } else if (b.name == "cv-nlmeans") {
     cv::Mat ldr;
     cv::fastNlMeansDenoisingColored(to_8bit(src), ldr, static_cast<float>(b.p1),
                                     static_cast<float>(b.p2), 7, static_cast<int>(b.p3));

@@ -75,6 +75,9 @@ std::vector<Point> chart_points(const Results& r) {
   add("cuda_exact", "gpu", "chart", "exact", "cuda", "cpu");
   add("cuda_fast", "gpu", "chart", "fast", "", "");
   add("baselines", "cpu", "baselines", "", "", "");
+  add("cpu_wavelet", "cpu", "wavelet", "", "", "");
+  add("cuda_exact_wavelet", "gpu", "wavelet", "exact", "cuda", "cpu");
+  add("cuda_fast_wavelet", "gpu", "wavelet", "fast", "", "");
   // Pareto fronts within each platform: what a GPU user, or a CPU user, can pick from.
   for (Point& p : pts) {
     if (!std::isfinite(p.time_ms)) continue;

@@ -30,10 +30,15 @@ struct Point {
   bool pareto_psnr = false, pareto_flip = false;
 };
 
-// "gpu" for the CUDA series, "cpu" for the CPU SVGF and the OpenCV baselines.
+// The series, in the order chart_points gives them: SVGF's (the chart sections), the OpenCV
+// baselines, the wavelet filter's kernel sizes (the wavelet sections).
+inline const char* const kSeries[] = {"cpu_exact",        "cuda_exact",  "cuda_fast",
+                                      "baselines",        "cpu_wavelet", "cuda_exact_wavelet",
+                                      "cuda_fast_wavelet"};
+
+// "gpu" for the CUDA series, "cpu" for the CPU ones and the OpenCV baselines.
 std::string platform(const Point& p);
 
-// The series cpu_exact, cuda_exact, cuda_fast and baselines, in that order.
 std::vector<Point> chart_points(const Results& r);
 
 }  // namespace svgf::bench

@@ -27,7 +27,7 @@ void write_text_file(const fs::path& path, const std::string& text) {
 }
 
 void write_points(const fs::path& out, const std::vector<Point>& pts) {
-  for (const char* series : {"cpu_exact", "cuda_exact", "cuda_fast", "baselines"}) {
+  for (const char* series : kSeries) {
     std::ostringstream s;
     s << "# time_ms psnr_db flip ssim relmse label\n";
     for (const Point& p : pts)
@@ -56,7 +56,7 @@ void write_points(const fs::path& out, const std::vector<Point>& pts) {
 
 // Per-frame curves of each fixture scene: one file per scene and metric, one column per config.
 void write_error_curves(const fs::path& out, const Results& r) {
-  std::vector<std::string> keys = {"noisy input", kDefaultCpu, kDefaultFast};
+  std::vector<std::string> keys = {"noisy input", kDefaultCpu, kDefaultFast, kWaveletCpu};
   for (const json* e : r.timings("cpu", "baselines")) keys.push_back((*e)["key"]);
   std::map<std::string, std::map<std::string, json>> by_key;  // key -> scene -> entry
   std::vector<std::string> scenes;

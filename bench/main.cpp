@@ -5,10 +5,12 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "app/method_options.h"
 #include "app/options.h"
 #include "bench/baselines.h"
 #include "bench/chart_data.h"
@@ -20,13 +22,15 @@
 #include "io/atomic_file.h"
 
 namespace fs = std::filesystem;
+using svgf::app::kMethodParamUsage;
 using svgf::app::Options;
 using svgf::app::UsageError;
 using json = nlohmann::json;
 
 namespace {
 
-const char* const kUsage =
+// The options before and after the method parameters (app/method_options.h).
+const char* const kUsageHead =
     "usage: svgf-bench [run] [options]          one configuration, timed (and measured)\n"
     "       svgf-bench suite cpu|gpu [options]   the suites behind docs/benchmarks.md\n"
     "       svgf-bench chart-data RESULTS_DIR [--out DIR] [--targets FILE]\n"
@@ -35,11 +39,14 @@ const char* const kUsage =
     "                                            tree's bench/targets.json)\n"
     "       svgf-bench --help\n"
     "\n"
-    "run: times every stage (CUDA events on the GPU, a steady clock on the CPU) over --frames\n"
-    "frames after --warmup frames, and prints per stage and per frame the median and p95,\n"
-    "megapixels per second, the bytes the stage must move (bench/stage_cost.cpp), the achieved\n"
-    "bandwidth against the measured copy bandwidth, the floor, and the peak device memory.\n"
-    "  --method M            svgf (default), gaussian, bilateral, joint-bilateral, nlmeans\n"
+    "run: times every stage of the method, by its own stage names (CUDA events on the GPU, a\n"
+    "steady clock on the CPU) over --frames frames after --warmup frames, and prints per stage\n"
+    "and per frame the median and p95, megapixels per second and the peak device memory; for\n"
+    "svgf also the bytes the stage must move (bench/stage_cost.cpp), the achieved bandwidth\n"
+    "against the measured copy bandwidth and the floor (other methods: n/a, no cost model).\n"
+    "  --method M            a project method, as `svgf denoise`: svgf (default), wavelet,\n"
+    "                        gaussian; or an OpenCV baseline (CPU): cv-gaussian, cv-bilateral,\n"
+    "                        cv-joint-bilateral, cv-nlmeans\n"
     "  --backend cpu|cuda    (default cpu)\n"
     "  --mode exact|fast     fast exists on cuda only (default exact)\n"
     "  --threads N           CPU threads, 0 = all cores (default 0)\n"
@@ -51,17 +58,18 @@ const char* const kUsage =
     "  --frames N            timed frames (default 100)\n"
     "  --warmup N            untimed frames first (default 10)\n"
     "  --budget-s S          stop timing after S seconds once 10 frames are timed (default none)\n"
-    "  --iterations N        a-trous iterations (default 4)\n"
-    "  --feedback-tap N      iteration fed back as history, -1 none (default 1)\n"
     "  --block WxH           CUDA block shape (default 16x8)\n"
     "  --quality             with --fixture: per-frame PSNR, SSIM, relMSE, FLIP and temporal\n"
     "                        stability against the reference\n"
     "  --json PATH           write the results as JSON\n"
     "  --no-ceilings         skip measuring the copy bandwidth and float rate (for profilers)\n"
+    "method parameters (as `svgf denoise`; a flag the method does not read is an error):\n";
+const char* const kUsageTail =
     "\n"
-    "suite: cpu (sections sizes, chart, coverage, baselines, quality) or gpu (sizes, iterations,\n"
-    "coverage, blocks, chart, quality); results go to OUT/<suite>.json, where a rerun replaces\n"
-    "the entries it measures again (same section, configuration and input) and keeps the rest.\n"
+    "suite: cpu (sections sizes, chart, coverage, baselines, wavelet, quality) or gpu (sizes,\n"
+    "iterations, coverage, blocks, chart, wavelet, quality); results go to OUT/<suite>.json,\n"
+    "where a rerun replaces the entries it measures again (same section, configuration and\n"
+    "input) and keeps the rest. wavelet: the CIS 565 kernel sizes 3, 5, 7, 9 (4 passes).\n"
     "  --out DIR             (default docs/bench)\n"
     "  --sections A,B        only these sections\n"
     "  --sizes A,B           sizes of the sizes section (default 256,720p,1080p,4k)\n"
@@ -70,7 +78,10 @@ const char* const kUsage =
     "                        (default 1080p)\n"
     "  --fixtures DIR        fixture folders for the quality section (default fixtures)\n"
     "  --frames, --warmup, --scene, --distinct-frames, --cache as for run\n"
-    "  --baseline-budget-s S time budget per baseline timing (default 120)\n";
+    "  --baseline-budget-s S time budget per baseline and CPU wavelet timing, which also\n"
+    "                        warm up 2 frames only (default 120)\n";
+
+std::string usage() { return std::string(kUsageHead) + kMethodParamUsage + kUsageTail; }
 
 std::vector<std::string> split_commas(const std::string& s) {
   std::vector<std::string> v;
@@ -108,23 +119,27 @@ svgf::bench::TimingOptions timing_from(const Options& o) {
 
 int run_command(const std::vector<std::string>& args, const std::string& command) {
   using namespace svgf;
+  using namespace svgf::app;
   using namespace svgf::bench;
-  const Options o(
-      args,
-      {"method", "backend", "mode", "threads", "size", "fixture", "scene", "distinct-frames",
-       "cache", "frames", "warmup", "budget-s", "iterations", "feedback-tap", "block", "json"},
-      {"quality", "no-ceilings", "help"});
+  std::set<std::string> valued = {
+      "method",          "backend", "mode",   "threads", "size",     "fixture", "scene",
+      "distinct-frames", "cache",   "frames", "warmup",  "budget-s", "block",   "json"};
+  valued.insert(method_param_flags().begin(), method_param_flags().end());
+  const Options o(args, valued, {"quality", "no-ceilings", "help"});
   if (!o.positional().empty()) throw UsageError("unexpected argument '" + o.positional()[0] + "'");
   RunConfig c;
-  c.method = o.get("method", "svgf");
-  if (c.method != "svgf") c.baseline = baseline_by_name(c.method);
+  try {
+    c = run_config(o.get("method", "svgf"));
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  check_params_apply(o, c.method);
+  read_method_params(o, c.denoiser);
   c.denoiser.backend = parse_backend(o.get("backend", "cpu"));
   c.denoiser.mode = parse_mode(o.get("mode", "exact"));
   c.denoiser.threads = o.get_int("threads", 0, 0, 1024);
-  c.denoiser.svgf.iterations = o.get_int("iterations", 4, 0, 12);
-  c.denoiser.svgf.feedback_tap = o.get_int("feedback-tap", 1, -1, 11);
   if (o.has("block")) parse_block(o.get("block", ""), c.denoiser.block_x, c.denoiser.block_y);
-  if (c.method != "svgf" && c.denoiser.backend != Backend::Cpu)
+  if (!c.project() && c.denoiser.backend != Backend::Cpu)
     throw UsageError("the OpenCV baselines run on the CPU only");
 
   FrameSet frames;
@@ -148,7 +163,7 @@ int run_command(const std::vector<std::string>& args, const std::string& command
   Ceilings ceilings;
   if (o.has("no-ceilings")) {
     // No measurement (e.g. under a profiler): bandwidth shares and floors print as 0.
-  } else if (c.method == "svgf" && c.denoiser.backend == Backend::Cuda) {
+  } else if (c.cuda()) {
     DeviceInfo d = query_device();
     measure_ceilings(d);
     ceilings.copy_gbs = d.memcpy_gbs;
@@ -215,7 +230,7 @@ int main(int argc, char** argv) {
   try {
     for (const std::string& a : args)
       if (a == "--help" || a == "-h") {
-        std::fputs(kUsage, stdout);
+        std::fputs(usage().c_str(), stdout);
         return 0;
       }
     if (!args.empty() && args[0] == "suite")

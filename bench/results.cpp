@@ -37,6 +37,23 @@ void check_entries(const json& doc, const char* list, const char* const (&fields
   }
 }
 
+// OpenCV baselines were named like the project's methods ("gaussian s1") before the "cv-"
+// prefix; such entries are read under their present names.
+void rename_legacy_baselines(json& doc) {
+  for (const char* l : {"timings", "quality"}) {
+    if (!doc.contains(l)) continue;
+    for (json& e : doc[l]) {
+      json& c = e["config"];
+      if (!c.is_object() || c.value("mode", "") != "opencv" ||
+          c.value("method", "").rfind("cv-", 0) == 0)
+        continue;
+      for (json* j : {&e, &c})
+        for (const char* field : {"key", "label", "method"})
+          if (j->contains(field)) (*j)[field] = "cv-" + (*j)[field].get<std::string>();
+    }
+  }
+}
+
 // A suite's list `name`, or an empty one.
 const json& list(const json& suite, const char* name) {
   static const json kNone = json::array();
@@ -84,6 +101,7 @@ Results load_results(const std::string& dir) {
       throw std::runtime_error(file.string() + ": \"suite\" is not a name");
     check_entries(doc, "timings", kTimingFields, file);
     check_entries(doc, "quality", kQualityFields, file);
+    rename_legacy_baselines(doc);
     const std::string name = doc["suite"].get<std::string>();  // before doc is moved from
     r.suites[name] = std::move(doc);
   }

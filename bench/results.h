@@ -15,6 +15,8 @@ using json = nlohmann::json;
 inline const char* const kDefaultCpu = "svgf cpu exact it4 tap1";
 inline const char* const kDefaultExact = "svgf cuda exact it4 tap1";
 inline const char* const kDefaultFast = "svgf cuda fast it4 tap1";
+inline const char* const kWaveletCpu = "wavelet cpu exact it4 k5";
+inline const char* const kWaveletFast = "wavelet cuda fast it4 k5";
 
 struct Results {
   std::map<std::string, json> suites;  // by suite name ("cpu", "gpu")
@@ -28,7 +30,7 @@ struct Results {
 };
 
 // Every suite JSON in `dir` (files without a "suite" member are not suite results and are
-// skipped). A file that does not parse, or an entry without a field the writers read, is an
+// skipped). Entries of OpenCV baselines from before their "cv-" names are read with them. A file that does not parse, or an entry without a field the writers read, is an
 // error naming the file.
 Results load_results(const std::string& dir);
 

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 
@@ -31,75 +32,16 @@ json summary_json(const Summary& s) {
 // JSON has no infinities: a PSNR of identical images becomes null.
 json finite_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
-bool is_transfer(Stage s) { return s == Stage::Upload || s == Stage::Download; }
-
 }  // namespace
-
-int RunConfig::resolved_threads() const {
-  const int t = denoiser.threads;
-  return t > 0 ? t : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-}
-
-std::string RunConfig::key() const {
-  if (method == "svgf") {
-    std::string k = std::string("svgf ") + to_string(denoiser.backend) + " " +
-                    to_string(denoiser.mode) + " it" + std::to_string(denoiser.svgf.iterations) +
-                    " tap" + std::to_string(denoiser.svgf.feedback_tap);
-    const DenoiserConfig defaults;
-    if (denoiser.backend == Backend::Cuda &&
-        (denoiser.block_x != defaults.block_x || denoiser.block_y != defaults.block_y))
-      k += " b" + std::to_string(denoiser.block_x) + "x" + std::to_string(denoiser.block_y);
-    return k;
-  }
-  if (method == "noisy") return "noisy input";
-  return baseline.label();
-}
-
-std::string RunConfig::label() const {
-  const bool cpu_work = method != "noisy" && (method != "svgf" || denoiser.backend == Backend::Cpu);
-  return key() + (cpu_work ? " t" + std::to_string(resolved_threads()) : "");
-}
-
-RunConfig svgf_config(Backend backend, Mode mode, int iterations, int feedback_tap, int threads) {
-  RunConfig c;
-  c.method = "svgf";
-  c.denoiser.backend = backend;
-  c.denoiser.mode = mode;
-  c.denoiser.threads = threads;
-  c.denoiser.svgf.iterations = iterations;
-  c.denoiser.svgf.feedback_tap = feedback_tap;
-  return c;
-}
-
-json config_json(const RunConfig& c) {
-  json j;
-  j["method"] = c.method;
-  j["label"] = c.label();
-  j["key"] = c.key();
-  if (c.method == "svgf") {
-    const SvgfParams& p = c.denoiser.svgf;
-    j["backend"] = to_string(c.denoiser.backend);
-    j["mode"] = to_string(c.denoiser.mode);
-    j["iterations"] = p.iterations;
-    j["feedback_tap"] = p.feedback_tap;
-    if (c.denoiser.backend == Backend::Cuda) j["block"] = {c.denoiser.block_x, c.denoiser.block_y};
-  } else if (c.method != "noisy") {
-    j["backend"] = "cpu";
-    j["mode"] = "opencv";
-    j["params"] = {c.baseline.p1, c.baseline.p2, c.baseline.p3};
-  }
-  if (c.method != "noisy" && (c.method != "svgf" || c.denoiser.backend == Backend::Cpu))
-    j["threads"] = c.resolved_threads();
-  return j;
-}
 
 json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
               const Ceilings& ceilings) {
   if (c.method == "noisy") throw std::invalid_argument("the noisy input has no time to measure");
   if (fs.frames.empty()) throw std::invalid_argument("time_run: no frames");
-  const bool svgf = c.method == "svgf";
-  const bool cuda = svgf && c.denoiser.backend == Backend::Cuda;
-  const Mode cost_mode = svgf ? c.denoiser.mode : Mode::Exact;
+  const bool project = c.project(), cuda = c.cuda();
+  // Bytes and operations are counted for SVGF only (bench/stage_cost.h); other methods' stages
+  // are timed but have no floor.
+  const bool costed = project && c.denoiser.method == Method::Svgf;
   const double pixels = static_cast<double>(fs.width) * fs.height;
   const bool emission = !fs.frames.front().emission.empty();
   const double surface = fs.surface_fraction();
@@ -108,16 +50,20 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
   size_t mem_peak = 0;
   std::unique_ptr<Denoiser> den;
   std::string description;
-  if (svgf) {
+  // The method's stages in the order a frame runs them, then the CUDA engine's transfers.
+  std::vector<std::string> stage_names;
+  if (project) {
     den = make_denoiser(c.denoiser);
     description = den->description();
+    stage_names = den->stages();
+    if (cuda) stage_names.insert(stage_names.end(), {kUploadStage, kDownloadStage});
   } else {
     set_baseline_threads(c.resolved_threads());
     description =
         "opencv " + c.baseline.label() + ", " + std::to_string(c.resolved_threads()) + " threads";
   }
 
-  std::vector<std::vector<double>> stage_ms(kStageCount);
+  std::vector<std::vector<double>> stage_ms(stage_names.size());
   std::vector<double> filter_ms, wall_ms;
   const auto load_before = load_average();
   CpuUsage usage_before = cpu_usage();
@@ -140,9 +86,9 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
     const Frame& f = fs.frames[static_cast<size_t>(k)];
     // A fixture played again from its first frame is a cut; rendered frame sets are cycled
     // without one (their loop is a small jump the reprojection handles as motion).
-    if (svgf && m > 0 && (fs.is_cut(k) || (k == 0 && fs.source == "fixture"))) den->reset();
+    if (project && m > 0 && (fs.is_cut(k) || (k == 0 && fs.source == "fixture"))) den->reset();
     const auto t0 = Clock::now();
-    if (svgf)
+    if (project)
       den->denoise(f, out);
     else
       run_baseline(c.baseline, f, out);
@@ -154,10 +100,9 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
     if (warm) continue;
     ++timed;
     wall_ms.push_back(wall);
-    if (svgf) {
+    if (project) {
       const StageTimes& st = den->last_report().times;
-      for (int s = 0; s < kStageCount; ++s)
-        stage_ms[static_cast<size_t>(s)].push_back(st[stage_name(static_cast<Stage>(s))]);
+      for (size_t s = 0; s < stage_names.size(); ++s) stage_ms[s].push_back(st[stage_names[s]]);
       filter_ms.push_back(st.filter_ms());
     } else {
       filter_ms.push_back(wall);
@@ -183,47 +128,49 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
   j["ceilings"] = {{"copy_gbs", ceilings.copy_gbs},
                    {"ops_per_s", ceilings.ops_per_s},
                    {"copy_what", ceilings.copy_what}};
+  j["cost_model"] = costed ? "bench/stage_cost.cpp" : "none";
 
   json stages = json::array();
   double floor_total = 0, bytes_total = 0, ops_total = 0;
-  if (svgf) {
-    const SvgfParams& p = c.denoiser.svgf;
-    for (int s = 0; s < kStageCount; ++s) {
-      const Stage stage = static_cast<Stage>(s);
-      const Summary st = summarize(stage_ms[static_cast<size_t>(s)]);
-      const StageCost cost = stage_cost(cost_mode, stage, p, emission, surface);
-      if (st.max <= 0 && cost.bytes() <= 0) continue;  // not run by this backend/mode
-      if (is_transfer(stage) && !cuda) continue;
-      json e;
-      e["stage"] = stage_name(stage);
-      e["ms"] = summary_json(st);
-      e["mpix_per_s"] = st.median > 0 ? pixels / (st.median * 1e3) : 0.0;
-      e["bytes_read_per_px"] = cost.read;
-      e["bytes_written_per_px"] = cost.written;
-      e["ops_per_px"] = cost.ops;
-      e["planes"] = cost.planes;
-      const double bytes = cost.bytes() * pixels;
-      e["bytes_per_frame"] = bytes;
-      const double gbs = st.median > 0 ? bytes / (st.median * 1e-3) / 1e9 : 0.0;
-      e["achieved_gbs"] = gbs;
-      e["host_link"] = is_transfer(stage);
-      if (!is_transfer(stage)) {
-        const double bytes_ms = ceilings.copy_gbs > 0 ? bytes / (ceilings.copy_gbs * 1e9) * 1e3 : 0;
-        const double ops_ms =
-            ceilings.ops_per_s > 0 ? cost.ops * pixels / ceilings.ops_per_s * 1e3 : 0;
-        const double floor = std::max(bytes_ms, ops_ms);
-        e["pct_of_copy_bw"] = ceilings.copy_gbs > 0 ? 100.0 * gbs / ceilings.copy_gbs : 0.0;
-        e["floor"] = {{"bytes_ms", bytes_ms},
-                      {"ops_ms", ops_ms},
-                      {"floor_ms", floor},
-                      {"bound", ops_ms > bytes_ms ? "ops" : "bytes"},
-                      {"ratio", floor > 0 ? st.median / floor : 0.0}};
-        floor_total += floor;
-        bytes_total += bytes;
-        ops_total += cost.ops * pixels;
-      }
-      stages.push_back(e);
-    }
+  for (size_t si = 0; si < stage_names.size(); ++si) {
+    const std::string& name = stage_names[si];
+    const Summary st = summarize(stage_ms[si]);
+    const std::optional<Stage> counted = costed ? svgf_cost_stage(name) : std::nullopt;
+    const StageCost cost =
+        counted ? stage_cost(c.denoiser.mode, *counted, c.denoiser.svgf, emission, surface)
+                : StageCost{};
+    if (st.max <= 0 && cost.bytes() <= 0) continue;  // not run by this backend/mode
+    json e;
+    e["stage"] = name;
+    e["ms"] = summary_json(st);
+    e["mpix_per_s"] = st.median > 0 ? pixels / (st.median * 1e3) : 0.0;
+    e["host_link"] = is_transfer_stage(name);
+    stages.push_back(e);
+    if (!counted) continue;  // no cost model: no bytes, operations or floor ("n/a")
+    json& ec = stages.back();
+    ec["bytes_read_per_px"] = cost.read;
+    ec["bytes_written_per_px"] = cost.written;
+    ec["ops_per_px"] = cost.ops;
+    ec["planes"] = cost.planes;
+    const double bytes = cost.bytes() * pixels;
+    ec["bytes_per_frame"] = bytes;
+    const double gbs = st.median > 0 ? bytes / (st.median * 1e-3) / 1e9 : 0.0;
+    ec["achieved_gbs"] = gbs;
+    if (is_transfer_stage(name)) continue;
+    const double bytes_ms = ceilings.copy_gbs > 0 ? bytes / (ceilings.copy_gbs * 1e9) * 1e3 : 0;
+    const double ops_ms = ceilings.ops_per_s > 0 ? cost.ops * pixels / ceilings.ops_per_s * 1e3 : 0;
+    const double floor = std::max(bytes_ms, ops_ms);
+    ec["pct_of_copy_bw"] = ceilings.copy_gbs > 0 ? 100.0 * gbs / ceilings.copy_gbs : 0.0;
+    ec["floor"] = {{"bytes_ms", bytes_ms},
+                   {"ops_ms", ops_ms},
+                   {"floor_ms", floor},
+                   {"bound", ops_ms > bytes_ms ? "ops" : "bytes"},
+                   {"ratio", floor > 0 ? st.median / floor : 0.0}};
+    floor_total += floor;
+    bytes_total += bytes;
+    ops_total += cost.ops * pixels;
+  }
+  if (costed) {
     const double bytes_ms =
         ceilings.copy_gbs > 0 ? bytes_total / (ceilings.copy_gbs * 1e9) * 1e3 : 0;
     const double ops_ms = ceilings.ops_per_s > 0 ? ops_total / ceilings.ops_per_s * 1e3 : 0;
@@ -252,9 +199,9 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
 json quality_run(const RunConfig& c, const FrameSet& fs) {
   if (!fs.has_reference())
     throw std::invalid_argument("quality: " + fs.description + " has no reference");
-  const bool svgf = c.method == "svgf";
+  const bool project = c.project();
   std::unique_ptr<Denoiser> den;
-  if (svgf)
+  if (project)
     den = make_denoiser(c.denoiser);
   else if (c.method != "noisy")
     set_baseline_threads(c.resolved_threads());
@@ -267,7 +214,7 @@ json quality_run(const RunConfig& c, const FrameSet& fs) {
     const Frame& f = fs.frames[static_cast<size_t>(k)];
     const bool cut = fs.is_cut(k);
     int64_t replaced = 0;
-    if (svgf) {
+    if (project) {
       if (cut) den->reset();
       den->denoise(f, out);
       replaced = den->last_report().replaced_samples;
@@ -282,7 +229,7 @@ json quality_run(const RunConfig& c, const FrameSet& fs) {
               {"flip", q.flip}, {"cut", cut}};
     e["error_change"] = q.error_change ? json(*q.error_change) : json(nullptr);
     e["output_change"] = q.output_change ? json(*q.output_change) : json(nullptr);
-    if (svgf) e["replaced_samples"] = replaced;
+    if (project) e["replaced_samples"] = replaced;
     frames.push_back(e);
     if (std::isfinite(q.psnr)) {
       sums[0] += q.psnr;
@@ -329,21 +276,22 @@ void print_timing(const json& e, std::FILE* f) {
   std::fprintf(f, "  %-12s %9s %9s %9s %8s %8s %6s %8s %9s %7s\n", "stage", "median ms", "p95 ms",
                "MP/s", "B/px", "GB/s", "%copy", "ops/px", "floor ms", "xfloor");
   for (const json& s : e["stages"]) {
-    const double bpx =
-        s["bytes_read_per_px"].get<double>() + s["bytes_written_per_px"].get<double>();
-    if (s["host_link"].get<bool>()) {
-      std::fprintf(f, "  %-12s %9.3f %9.3f %9.0f %8.0f %8.1f %6s %8s %9s %7s\n",
-                   s["stage"].get<std::string>().c_str(), s["ms"]["median"].get<double>(),
-                   s["ms"]["p95"].get<double>(), s["mpix_per_s"].get<double>(), bpx,
-                   s["achieved_gbs"].get<double>(), "link", "-", "-", "-");
+    std::fprintf(f, "  %-12s %9.3f %9.3f %9.0f", s["stage"].get<std::string>().c_str(),
+                 s["ms"]["median"].get<double>(), s["ms"]["p95"].get<double>(),
+                 s["mpix_per_s"].get<double>());
+    if (!s.contains("bytes_read_per_px")) {  // no cost model for this method
+      std::fprintf(f, " %8s %8s %6s %8s %9s %7s\n", "n/a", "n/a", "n/a", "n/a", "n/a", "n/a");
       continue;
     }
-    std::fprintf(f, "  %-12s %9.3f %9.3f %9.0f %8.0f %8.1f %6.1f %8.0f %9.4f %7.2f\n",
-                 s["stage"].get<std::string>().c_str(), s["ms"]["median"].get<double>(),
-                 s["ms"]["p95"].get<double>(), s["mpix_per_s"].get<double>(), bpx,
-                 s["achieved_gbs"].get<double>(), s["pct_of_copy_bw"].get<double>(),
-                 s["ops_per_px"].get<double>(), s["floor"]["floor_ms"].get<double>(),
-                 s["floor"]["ratio"].get<double>());
+    const double bpx =
+        s["bytes_read_per_px"].get<double>() + s["bytes_written_per_px"].get<double>();
+    std::fprintf(f, " %8.0f %8.1f", bpx, s["achieved_gbs"].get<double>());
+    if (s["host_link"].get<bool>())
+      std::fprintf(f, " %6s %8s %9s %7s\n", "link", "-", "-", "-");
+    else
+      std::fprintf(f, " %6.1f %8.0f %9.4f %7.2f\n", s["pct_of_copy_bw"].get<double>(),
+                   s["ops_per_px"].get<double>(), s["floor"]["floor_ms"].get<double>(),
+                   s["floor"]["ratio"].get<double>());
   }
   const json& fm = e["frame_ms"];
   std::fprintf(f, "  %-12s %9.3f %9.3f %9.0f", "frame", fm["filter"]["median"].get<double>(),
@@ -353,6 +301,8 @@ void print_timing(const json& e, std::FILE* f) {
                  e["floor"]["frame_achieved_gbs"].get<double>(), "",
                  e["floor"]["ops_per_px"].get<double>(), e["floor"]["floor_ms"].get<double>(),
                  e["floor"]["ratio"].get<double>());
+  else
+    std::fprintf(f, " %8s %8s %6s %8s %9s %7s", "n/a", "n/a", "", "n/a", "n/a", "n/a");
   std::fprintf(f, "\n  %-12s %9.3f %9.3f   (denoise() call, host clock)\n", "frame wall",
                fm["wall"]["median"].get<double>(), fm["wall"]["p95"].get<double>());
   if (e.contains("peak_device_bytes"))

@@ -9,6 +9,7 @@
 // its output depends on and the planes it stores. Not checked: the operation counts (hand
 // counts), and fast mode (SvgfFast exists only under nvcc; its fused kernels are counted from
 // the same functors by hand).
+#include <optional>
 #include <string>
 
 #include "core/stage_times.h"
@@ -35,6 +36,14 @@ inline const char* stage_name(Stage s) {
     case Stage::Download: return kDownloadStage;
     default: return "?";
   }
+}
+
+// The cost model's stage named `name` (SVGF's stage names and the transfers); none for another
+// name.
+inline std::optional<Stage> svgf_cost_stage(const std::string& name) {
+  for (int s = 0; s < kStageCount; ++s)
+    if (name == stage_name(static_cast<Stage>(s))) return static_cast<Stage>(s);
+  return std::nullopt;
 }
 
 struct StageCost {

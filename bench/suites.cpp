@@ -42,6 +42,18 @@ std::vector<std::pair<int, int>> chart_params() {
   return v;
 }
 
+// The CIS 565 kernel-size study: the wavelet filter at its defaults (4 passes) with each size.
+constexpr int kWaveletKernelSizes[] = {3, 5, 7, 9};
+
+// A single-frame filter's timing on a slow machine: the baselines' time budget, and a short
+// warm-up (there is no history to fill, only caches and allocations).
+TimingOptions budgeted(const SuiteOptions& o) {
+  TimingOptions t = o.timing;
+  t.budget_s = o.baseline_budget_s;
+  t.warmup = std::min(t.warmup, 2);
+  return t;
+}
+
 bool wanted(const SuiteOptions& o, const std::string& section) {
   return o.sections.empty() ||
          std::find(o.sections.begin(), o.sections.end(), section) != o.sections.end();
@@ -203,13 +215,17 @@ std::vector<FrameSet> load_fixtures(const SuiteOptions& o) {
   return sets;
 }
 
-// Exact mode's promise, checked on the fixtures: the CUDA output has the CPU's bits.
-json bitwise_check(const std::vector<FrameSet>& fixtures) {
-  json j = {{"name", "cpu exact == cuda exact (it4 tap1, every fixture frame)"}};
+// Exact mode's promise, checked on the fixtures: the CUDA output of `cpu` (a CPU exact
+// configuration) on the GPU has the CPU's bits. `what` names the configuration in the check.
+json bitwise_check(const std::vector<FrameSet>& fixtures, const RunConfig& cpu_config,
+                   const std::string& what) {
+  json j = {{"name", "cpu exact == cuda exact (" + what + ", every fixture frame)"}};
   size_t values = 0, differing = 0;
+  DenoiserConfig cuda_config = cpu_config.denoiser;
+  cuda_config.backend = Backend::Cuda;
   for (const FrameSet& f : fixtures) {
-    auto cpu = make_denoiser(svgf_config(Backend::Cpu, Mode::Exact, 4, 1, 0).denoiser);
-    auto gpu = make_denoiser(svgf_config(Backend::Cuda, Mode::Exact, 4, 1, 0).denoiser);
+    auto cpu = make_denoiser(cpu_config.denoiser);
+    auto gpu = make_denoiser(cuda_config);
     Image a, b;
     for (int k = 0; k < static_cast<int>(f.frames.size()); ++k) {
       if (f.is_cut(k)) {
@@ -282,16 +298,16 @@ int run_cpu_suite(const SuiteOptions& o, SuiteWriter& w) {
     w.finish_section("coverage");
   }
   if (wanted(o, "baselines") && baselines_available()) {
-    TimingOptions t = o.timing;
-    t.budget_s = o.baseline_budget_s;
-    for (const Baseline& b : default_baselines()) {
-      RunConfig c;
-      c.method = b.name;
-      c.baseline = b;
-      c.denoiser.threads = all;
-      timed(w, "baselines", c, frames.get(o.chart_size), t, ceilings[all]);
-    }
+    for (const Baseline& b : default_baselines())
+      timed(w, "baselines", baseline_config(b, all), frames.get(o.chart_size), budgeted(o),
+            ceilings[all]);
     w.finish_section("baselines");
+  }
+  if (wanted(o, "wavelet")) {
+    for (int k : kWaveletKernelSizes)
+      timed(w, "wavelet", wavelet_config(Backend::Cpu, Mode::Exact, k, all),
+            frames.get(o.chart_size), budgeted(o), ceilings[all]);
+    w.finish_section("wavelet");
   }
   if (wanted(o, "quality")) {
     const std::vector<FrameSet> fixtures = load_fixtures(o);
@@ -301,14 +317,10 @@ int run_cpu_suite(const SuiteOptions& o, SuiteWriter& w) {
     configs.push_back(noisy);
     for (auto [it, tap] : chart_params())
       configs.push_back(svgf_config(Backend::Cpu, Mode::Exact, it, tap, all));
+    for (int k : kWaveletKernelSizes)
+      configs.push_back(wavelet_config(Backend::Cpu, Mode::Exact, k, all));
     if (baselines_available())
-      for (const Baseline& b : default_baselines()) {
-        RunConfig c;
-        c.method = b.name;
-        c.baseline = b;
-        c.denoiser.threads = all;
-        configs.push_back(c);
-      }
+      for (const Baseline& b : default_baselines()) configs.push_back(baseline_config(b, all));
     quality_all(w, configs, fixtures);
     w.finish_section("quality");
   }
@@ -379,18 +391,30 @@ int run_gpu_suite(const SuiteOptions& o, SuiteWriter& w) {
               o.timing, ceilings);
     w.finish_section("chart");
   }
+  if (wanted(o, "wavelet")) {
+    for (Mode m : {Mode::Exact, Mode::Fast})
+      for (int k : kWaveletKernelSizes)
+        timed(w, "wavelet", wavelet_config(Backend::Cuda, m, k, 0), frames.get(o.chart_size),
+              o.timing, ceilings);
+    w.finish_section("wavelet");
+  }
   if (wanted(o, "quality")) {
     const std::vector<FrameSet> fixtures = load_fixtures(o);
     if (!fixtures.empty()) {
-      try {
-        w.add("checks", "quality", bitwise_check(fixtures));
-      } catch (const std::exception& e) {
-        std::fprintf(stderr, "svgf-bench: bitwise check failed: %s\n", e.what());
-      }
+      const std::pair<RunConfig, const char*> checks[] = {
+          {svgf_config(Backend::Cpu, Mode::Exact, 4, 1, 0), "it4 tap1"},
+          {wavelet_config(Backend::Cpu, Mode::Exact, 5, 0), "wavelet it4 k5"}};
+      for (const auto& [config, what] : checks) try {
+          w.add("checks", "quality", bitwise_check(fixtures, config, what));
+        } catch (const std::exception& e) {
+          std::fprintf(stderr, "svgf-bench: bitwise check (%s) failed: %s\n", what, e.what());
+        }
       std::vector<RunConfig> configs;
-      for (Mode m : {Mode::Exact, Mode::Fast})
+      for (Mode m : {Mode::Exact, Mode::Fast}) {
         for (auto [it, tap] : chart_params())
           configs.push_back(svgf_config(Backend::Cuda, m, it, tap, 0));
+        for (int k : kWaveletKernelSizes) configs.push_back(wavelet_config(Backend::Cuda, m, k, 0));
+      }
       quality_all(w, configs, fixtures);
     }
     w.finish_section("quality");
@@ -401,8 +425,9 @@ int run_gpu_suite(const SuiteOptions& o, SuiteWriter& w) {
 }  // namespace
 
 std::vector<std::string> suite_sections(const std::string& name) {
-  if (name == "cpu") return {"sizes", "chart", "coverage", "baselines", "quality"};
-  if (name == "gpu") return {"sizes", "iterations", "coverage", "blocks", "chart", "quality"};
+  if (name == "cpu") return {"sizes", "chart", "coverage", "baselines", "wavelet", "quality"};
+  if (name == "gpu")
+    return {"sizes", "iterations", "coverage", "blocks", "chart", "wavelet", "quality"};
   throw std::invalid_argument("unknown suite '" + name + "' (known: cpu, gpu)");
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 // The predefined benchmark suites behind docs/benchmarks.md: every size, mode, iteration count,
-// thread count, baseline and fixture the charts and tables need, in one process.
+// thread count, method, baseline and fixture the charts and tables need, in one process.
 #include <string>
 #include <vector>
 
@@ -24,8 +24,9 @@ struct SuiteOptions {
   std::string command;  // how the suite was invoked, for the report
 };
 
-// Sections: cpu: sizes, chart, coverage, baselines, quality; gpu: sizes, iterations, coverage,
-// blocks, chart, quality.
+// Sections: cpu: sizes, chart, coverage, baselines, wavelet, quality; gpu: sizes, iterations,
+// coverage, blocks, chart, wavelet, quality. The wavelet section is the CIS 565 kernel-size
+// study (3x3 to 9x9, 4 passes); on the CPU it runs under the baselines' time budget.
 std::vector<std::string> suite_sections(const std::string& name);
 int run_suite(const SuiteOptions& options);
 

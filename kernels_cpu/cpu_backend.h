@@ -4,7 +4,8 @@
 //   Engine& engine()                       runs pixel kernels (run, run_counting), times stages
 //   using Buffer; allocate(buffer, channels, what)  a planar float buffer of the frame's size
 //   set_method_planes(n)                   how many planes the method allocates (for errors)
-//   float* plane(buffer, c); Image read(buffer)      its planes as views; a host copy
+//   float* plane(buffer, c); RgbView rgb(buffer, first); Image read(buffer)
+//                                          its planes as views; a host copy
 //   bool resize(w, h)                      frame size (true when buffers must be reallocated)
 //   FrameInputs inputs(frame, position)    this frame's inputs on the backend's side (world
 //                                          positions only when asked for)
@@ -51,6 +52,8 @@ class CpuBackend {
   void set_method_planes(int) {}
   void allocate(Buffer& b, int channels, const char*) { b = Image(width_, height_, channels); }
   float* plane(Buffer& b, int c) const { return b.plane(c); }
+  // Three planes of a buffer from `first_plane` on, as a color view.
+  RgbView rgb(Buffer& b, int first_plane = 0) const { return b.rgb(first_plane); }
   Image read(const Buffer& b) const { return b; }
 
   // `position`: the method reads world positions (read in place: free here).

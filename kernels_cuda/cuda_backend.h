@@ -83,6 +83,10 @@ class CudaBackend {
     b.resize(static_cast<size_t>(channels) * pixels(), named.c_str());
   }
   float* plane(const Buffer& b, int c) const { return b.get() + static_cast<size_t>(c) * pixels(); }
+  // Three planes of a buffer from `first_plane` on, as a color view.
+  RgbView rgb(const Buffer& a, int first_plane = 0) const {
+    return {plane(a, first_plane), plane(a, first_plane + 1), plane(a, first_plane + 2)};
+  }
   Image read(const Buffer& b) const {
     SVGF_CUDA_CHECK(cudaSetDevice(device_), "cudaSetDevice");
     SVGF_CUDA_CHECK(cudaStreamSynchronize(engine_.stream()), "read_buffer: cudaStreamSynchronize");
@@ -182,9 +186,6 @@ class CudaBackend {
     return s;
   }
 
-  RgbView rgb(const Buffer& a, int first_plane) const {
-    return {plane(a, first_plane), plane(a, first_plane + 1), plane(a, first_plane + 2)};
-  }
 
   GuideView guides(int slot) const {
     GuideView g;

@@ -217,93 +217,68 @@ TEST_CASE("parameter sweep: CPU vs CUDA exact bitwise, fast within tolerance, ev
   }
 }
 
+// A single-frame method on the three devices over the first `frames` frames of a source: the
+// CPU and CUDA exact give the same bits (output and every debug buffer) and the same replaced
+// sample count, fast mode stays within the pipeline tolerance. `configure` sets the method
+// and its parameters on a config.
+void compare_method(const Source& src, int frames,
+                    const std::function<void(DenoiserConfig&)>& configure) {
+  auto with = [&](Backend b, Mode m) {
+    DenoiserConfig c = config(b, m, 13, 7);
+    configure(c);
+    return make_denoiser(c);
+  };
+  auto cpu = with(Backend::Cpu, Mode::Exact);
+  auto exact = with(Backend::Cuda, Mode::Exact);
+  auto fast = with(Backend::Cuda, Mode::Fast);
+  for (int k = 0; k < std::min(src.frames, frames); ++k) {
+    const Frame f = src.frame(k);
+    const std::string where = src.name + ", frame " + std::to_string(k) + ", " + cpu->description();
+    Image a, b, c;
+    cpu->denoise(f, a);
+    exact->denoise(f, b);
+    fast->denoise(f, c);
+    test::require_identical(a, b, where + ": output (CPU vs CUDA exact)");
+    for (const std::string& name : cpu->debug_buffers())
+      test::require_identical(cpu->read_buffer(name), exact->read_buffer(name), where + ": " + name);
+    INFO(where);
+    REQUIRE(cpu->last_report().replaced_samples == exact->last_report().replaced_samples);
+    REQUIRE(fast->last_report().replaced_samples == exact->last_report().replaced_samples);
+    for (float v : c.data()) REQUIRE(std::isfinite(v));
+    REQUIRE(metrics::relmse(c, b) <= kFastMaxRelMse);
+    count_values(a);
+  }
+}
+
 TEST_CASE("gaussian: CPU vs CUDA exact bitwise, fast within tolerance, every source",
           "[pipeline][gaussian]") {
-  // The second method through the same backends: the CPU and CUDA exact give the same bits on
-  // every frame (debug buffers included), fast mode stays within the SVGF tolerance.
-  for (const Source& src : sources()) {
-    for (const std::pair<float, int>& setting : {std::pair<float, int>{2.f, 0}, {5.f, 3}}) {
-      const float sigma = setting.first;
-      const int radius = setting.second;
-      auto with = [&](Backend b, Mode m) {
-        DenoiserConfig c = config(b, m, 13, 7);
+  for (const Source& src : sources())
+    for (const std::pair<float, int>& setting : {std::pair<float, int>{2.f, 0}, {5.f, 3}})
+      compare_method(src, 3, [&](DenoiserConfig& c) {
         c.method = Method::Gaussian;
-        c.gaussian.sigma = sigma;
-        c.gaussian.radius = radius;
-        return make_denoiser(c);
-      };
-      auto cpu = with(Backend::Cpu, Mode::Exact);
-      auto exact = with(Backend::Cuda, Mode::Exact);
-      auto fast = with(Backend::Cuda, Mode::Fast);
-      for (int k = 0; k < std::min(src.frames, 3); ++k) {
-        const Frame f = src.frame(k);
-        const std::string where = src.name + ", frame " + std::to_string(k) + ", sigma " +
-                                  std::to_string(sigma);
-        Image a, b, c;
-        cpu->denoise(f, a);
-        exact->denoise(f, b);
-        fast->denoise(f, c);
-        test::require_identical(a, b, where + ": gaussian output (CPU vs CUDA exact)");
-        for (const std::string& name : cpu->debug_buffers())
-          test::require_identical(cpu->read_buffer(name), exact->read_buffer(name),
-                                  where + ": gaussian " + name);
-        INFO(where);
-        REQUIRE(cpu->last_report().replaced_samples == exact->last_report().replaced_samples);
-        REQUIRE(fast->last_report().replaced_samples == exact->last_report().replaced_samples);
-        for (float v : c.data()) REQUIRE(std::isfinite(v));
-        REQUIRE(metrics::relmse(c, b) <= kFastMaxRelMse);
-        count_values(a);
-      }
-    }
-  }
+        c.gaussian.sigma = setting.first;
+        c.gaussian.radius = setting.second;
+      });
 }
 
 TEST_CASE("wavelet: CPU vs CUDA exact bitwise, fast within tolerance, every source and size",
           "[pipeline][wavelet]") {
-  // The CIS 565 wavelet filter: every kernel size, and non-default sigmas (sigma_N not a power
-  // of 2: the det_pow path).
+  // Every kernel size, and non-default sigmas (sigma_N not a power of 2: the det_pow path).
   struct Setting {
     int kernel_size, iterations;
     float sigma_normal, sigma_luma;
   };
-  for (const Source& src : sources()) {
+  for (const Source& src : sources())
     for (const Setting s : {Setting{3, 4, 64.f, 4.f}, Setting{5, 4, 64.f, 4.f},
                             Setting{7, 3, 100.f, 2.f}, Setting{9, 2, 64.f, 8.f},
-                            Setting{5, 0, 64.f, 4.f}}) {
-      auto with = [&](Backend b, Mode m) {
-        DenoiserConfig c = config(b, m, 13, 7);
+                            Setting{5, 0, 64.f, 4.f}})
+      compare_method(src, 2, [&](DenoiserConfig& c) {
         c.method = Method::Wavelet;
         c.wavelet.kernel_size = s.kernel_size;
         c.wavelet.iterations = s.iterations;
         c.wavelet.sigma_normal = s.sigma_normal;
         c.wavelet.sigma_luma = s.sigma_luma;
-        return make_denoiser(c);
-      };
-      auto cpu = with(Backend::Cpu, Mode::Exact);
-      auto exact = with(Backend::Cuda, Mode::Exact);
-      auto fast = with(Backend::Cuda, Mode::Fast);
-      for (int k = 0; k < std::min(src.frames, 2); ++k) {
-        const Frame f = src.frame(k);
-        const std::string where = src.name + ", frame " + std::to_string(k) + ", kernel " +
-                                  std::to_string(s.kernel_size) + ", passes " +
-                                  std::to_string(s.iterations);
-        Image a, b, c;
-        cpu->denoise(f, a);
-        exact->denoise(f, b);
-        fast->denoise(f, c);
-        test::require_identical(a, b, where + ": wavelet output (CPU vs CUDA exact)");
-        for (const std::string& name : cpu->debug_buffers())
-          test::require_identical(cpu->read_buffer(name), exact->read_buffer(name),
-                                  where + ": wavelet " + name);
-        INFO(where);
-        REQUIRE(cpu->last_report().replaced_samples == exact->last_report().replaced_samples);
-        REQUIRE(fast->last_report().replaced_samples == exact->last_report().replaced_samples);
-        for (float v : c.data()) REQUIRE(std::isfinite(v));
-        REQUIRE(metrics::relmse(c, b) <= kFastMaxRelMse);
-        count_values(a);
-      }
-    }
-  }
+      });
 }
 
 TEST_CASE("jbf: CPU vs CUDA exact bitwise, fast within tolerance, both forms, every source",
@@ -313,40 +288,16 @@ TEST_CASE("jbf: CPU vs CUDA exact bitwise, fast within tolerance, both forms, ev
     int radius, levels;
     float sigma_color;
   };
-  for (const Source& src : sources()) {
+  for (const Source& src : sources())
     for (const Setting s : {Setting{Method::Jbf, 16, 0, 0.6f}, Setting{Method::Jbf, 5, 0, 2.f},
                             Setting{Method::JbfAtrous, 16, 4, 0.6f},
-                            Setting{Method::JbfAtrous, 16, 2, 2.f}}) {
-      auto with = [&](Backend b, Mode m) {
-        DenoiserConfig c = config(b, m, 13, 7);
+                            Setting{Method::JbfAtrous, 16, 2, 2.f}})
+      compare_method(src, 2, [&](DenoiserConfig& c) {
         c.method = s.method;
         c.jbf.radius = s.radius;
         c.jbf.levels = s.levels;
         c.jbf.sigma_color = s.sigma_color;
-        return make_denoiser(c);
-      };
-      auto cpu = with(Backend::Cpu, Mode::Exact);
-      auto exact = with(Backend::Cuda, Mode::Exact);
-      auto fast = with(Backend::Cuda, Mode::Fast);
-      for (int k = 0; k < std::min(src.frames, 2); ++k) {
-        const Frame f = src.frame(k);
-        const std::string where = src.name + ", frame " + std::to_string(k) + ", " +
-                                  cpu->description();
-        Image a, b, c;
-        cpu->denoise(f, a);
-        exact->denoise(f, b);
-        fast->denoise(f, c);
-        test::require_identical(a, b, where + ": jbf output (CPU vs CUDA exact)");
-        test::require_identical(cpu->read_buffer("sanitized"), exact->read_buffer("sanitized"),
-                                where + ": jbf sanitized");
-        INFO(where);
-        REQUIRE(fast->last_report().replaced_samples == exact->last_report().replaced_samples);
-        for (float v : c.data()) REQUIRE(std::isfinite(v));
-        REQUIRE(metrics::relmse(c, b) <= kFastMaxRelMse);
-        count_values(a);
-      }
-    }
-  }
+      });
 }
 
 TEST_CASE("determinism: two runs and three block shapes give the same bits, exact and fast",

@@ -27,6 +27,7 @@
 using namespace svgf;
 using svgf::test::StageRunner;
 using svgf::test::TestDevice;
+using svgf::test::with_arith;
 
 namespace {
 
@@ -99,19 +100,6 @@ Image reference_pass(const Frame& f, const Image& in, int radius, int step, bool
       for (int c = 0; c < 3; ++c) out.at(x, y, c) = static_cast<float>(cs[c] / ws);
     }
   return out;
-}
-
-template <class Body>
-void with_arith(const TestDevice& d, const Body& body) {
-  if (!d.fast()) {
-    body(ExactArith{});
-    return;
-  }
-#if defined(__CUDACC__)
-  body(FastArith{});
-#else
-  FAIL("fast mode in a binary not compiled by nvcc");
-#endif
 }
 
 void pass_against_double(const TestDevice& d) {

@@ -81,6 +81,21 @@ inline bool device_ready_or_skip(const TestDevice& d) {
   return false;
 }
 
+// Runs body(arith) with the device's arithmetic policy (core/arith.h): ExactArith, or FastArith
+// on CUDA fast, for stage functors templated on it alone.
+template <class Body>
+void with_arith(const TestDevice& d, const Body& body) {
+  if (!d.fast()) {
+    body(ExactArith{});
+    return;
+  }
+#if defined(__CUDACC__)
+  body(FastArith{});
+#else
+  FAIL("fast mode in a binary not compiled by nvcc");
+#endif
+}
+
 // How many 4-byte values differ bit for bit between `want` and `got` (so -0 differs from +0
 // and NaN payloads count); `first` gets the first five as "plane (x,y): CPU a CUDA b" lines.
 // Values are planes of `words` each, rows of `width`.

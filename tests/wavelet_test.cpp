@@ -23,6 +23,7 @@
 using namespace svgf;
 using svgf::test::StageRunner;
 using svgf::test::TestDevice;
+using svgf::test::with_arith;
 
 namespace {
 
@@ -95,19 +96,6 @@ double worst_relative(const Image& got, const Image& want) {
     worst = std::max(worst, std::fabs(double(got.data()[i]) - want.data()[i]) /
                                 std::max(1e-3, std::fabs(double(want.data()[i]))));
   return worst;
-}
-
-template <class Body>
-void with_arith(const TestDevice& d, const Body& body) {
-  if (!d.fast()) {
-    body(ExactArith{});
-    return;
-  }
-#if defined(__CUDACC__)
-  body(FastArith{});
-#else
-  FAIL("fast mode in a binary not compiled by nvcc");
-#endif
 }
 
 void pass_against_double(const TestDevice& d) {

@@ -15,6 +15,9 @@ set style line 1 lc rgb "#1f77b4" pt 7 ps 1.4
 set style line 2 lc rgb "#2ca02c" pt 5 ps 1.4
 set style line 3 lc rgb "#d62728" pt 9 ps 1.6
 set style line 4 lc rgb "#7f7f7f" pt 13 ps 1.5
+set style line 5 lc rgb "#17becf" pt 11 ps 1.4
+set style line 6 lc rgb "#8c564b" pt 3 ps 1.4
+set style line 7 lc rgb "#e377c2" pt 15 ps 1.4
 set style line 8 lc rgb "#9467bd" lw 2 dt 2
 set style line 9 lc rgb "#ff7f0e" lw 2 dt 2
 front(plat) = data . "/pareto_" . metric . "_" . plat . ".dat"
@@ -32,4 +35,10 @@ plot \
   f("cuda_fast") using 1:col ls 3 title "SVGF CUDA fast", \
   f("cuda_fast") using 1:col:6 with labels offset -0.6,0.7 right font ",8" tc rgb "#d62728" notitle, \
   f("baselines") using 1:col ls 4 title "OpenCV baselines (CPU)", \
-  f("baselines") using 1:col:6 with labels offset 0.6,0 left font ",8" tc rgb "#555555" notitle
+  f("baselines") using 1:col:6 with labels offset 0.6,0 left font ",8" tc rgb "#555555" notitle, \
+  f("cpu_wavelet") using 1:col ls 5 title "wavelet CPU exact", \
+  f("cpu_wavelet") using 1:col:6 with labels offset 0.6,0.7 left font ",8" tc rgb "#17becf" notitle, \
+  f("cuda_exact_wavelet") using 1:col ls 6 title "wavelet CUDA exact", \
+  f("cuda_exact_wavelet") using 1:col:6 with labels offset 0.6,-0.7 left font ",8" tc rgb "#8c564b" notitle, \
+  f("cuda_fast_wavelet") using 1:col ls 7 title "wavelet CUDA fast", \
+  f("cuda_fast_wavelet") using 1:col:6 with labels offset -0.6,0.7 right font ",8" tc rgb "#e377c2" notitle

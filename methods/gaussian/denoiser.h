@@ -58,12 +58,14 @@ class GaussianDenoiser final : public Denoiser {
     const RgbView output = backend_.output(out);
 #if defined(__CUDACC__)
     if (mode_ == Mode::Fast)
-      run_gaussian_frame<FastArith>(engine, cur.color, rgb(scratch_), rgb(blurred_), output,
-                                    in.width(), in.height(), params_);
+      run_gaussian_frame<FastArith>(engine, cur.color, backend_.rgb(scratch_),
+                                    backend_.rgb(blurred_), output, in.width(), in.height(),
+                                    params_);
     else
 #endif
-      run_gaussian_frame<ExactArith>(engine, cur.color, rgb(scratch_), rgb(blurred_), output,
-                                     in.width(), in.height(), params_);
+      run_gaussian_frame<ExactArith>(engine, cur.color, backend_.rgb(scratch_),
+                                     backend_.rgb(blurred_), output, in.width(), in.height(),
+                                     params_);
     backend_.finish(in, out);
     report_.times = engine.times();
     report_.replaced_samples = engine.counted();
@@ -84,9 +86,6 @@ class GaussianDenoiser final : public Denoiser {
   }
 
  private:
-  RgbView rgb(typename Backend::Buffer& b) {
-    return {backend_.plane(b, 0), backend_.plane(b, 1), backend_.plane(b, 2)};
-  }
   GaussianParams params_;
   Mode mode_;
   Backend backend_;

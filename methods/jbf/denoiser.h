@@ -82,10 +82,10 @@ class JbfDenoiser final : public Denoiser {
     engine.begin_frame();
     JbfFrameBuffers b;
     b.in = backend_.inputs(in, /*position=*/true);
-    b.sanitized = rgb(sanitized_);
+    b.sanitized = backend_.rgb(sanitized_);
     if (params_.atrous()) {
-      b.signal[0] = rgb(signal_[0]);
-      b.signal[1] = rgb(signal_[1]);
+      b.signal[0] = backend_.rgb(signal_[0]);
+      b.signal[1] = backend_.rgb(signal_[1]);
     }
     b.output = backend_.output(out);
 #if defined(__CUDACC__)
@@ -117,9 +117,6 @@ class JbfDenoiser final : public Denoiser {
   }
 
  private:
-  RgbView rgb(typename Backend::Buffer& b) {
-    return {backend_.plane(b, 0), backend_.plane(b, 1), backend_.plane(b, 2)};
-  }
   JbfParams params_;
   Mode mode_;
   Backend backend_;

@@ -39,16 +39,16 @@ class SvgfDenoiser final : public Denoiser {
     b.color = cur.color;
     b.albedo = cur.albedo;
     b.emission = cur.emission;
-    b.prev_color = rgb(color_history_[prev]);
+    b.prev_color = backend_.rgb(color_history_[prev]);
     b.prev_moment1 = backend_.plane(moments_[prev], 0);
     b.prev_moment2 = backend_.plane(moments_[prev], 1);
     b.prev_history = backend_.plane(history_[prev], 0);
-    b.next_color = rgb(color_history_[next]);
+    b.next_color = backend_.rgb(color_history_[next]);
     b.next_moment1 = backend_.plane(moments_[next], 0);
     b.next_moment2 = backend_.plane(moments_[next], 1);
     b.next_history = backend_.plane(history_[next], 0);
-    b.illumination = rgb(illumination_);
-    b.accumulated = {rgb(accumulated_), backend_.plane(accumulated_, 3)};
+    b.illumination = backend_.rgb(illumination_);
+    b.accumulated = {backend_.rgb(accumulated_), backend_.plane(accumulated_, 3)};
     b.signal[0] = backend_.plane(signal_[0], 0);
     b.signal[1] = backend_.plane(signal_[1], 0);
     b.output = backend_.output(out);
@@ -90,10 +90,6 @@ class SvgfDenoiser final : public Denoiser {
   }
 
  private:
-  RgbView rgb(typename Backend::Buffer& buffer) {
-    return {backend_.plane(buffer, 0), backend_.plane(buffer, 1), backend_.plane(buffer, 2)};
-  }
-
   void allocate() {
     try {
       for (int s = 0; s < 2; ++s) {

@@ -109,12 +109,12 @@ class WaveletDenoiser final : public Denoiser {
     engine.begin_frame();
     WaveletFrameBuffers b;
     b.in = backend_.inputs(in);
-    b.illumination = rgb(illumination_);
+    b.illumination = backend_.rgb(illumination_);
     b.luma = backend_.plane(luma_, 0);
     b.spread = backend_.plane(spread_, 0);
     b.deviation = backend_.plane(deviation_, 0);
-    b.signal[0] = rgb(signal_[0]);
-    b.signal[1] = rgb(signal_[1]);
+    b.signal[0] = backend_.rgb(signal_[0]);
+    b.signal[1] = backend_.rgb(signal_[1]);
     b.output = backend_.output(out);
 #if defined(__CUDACC__)
     if (mode_ == Mode::Fast)
@@ -157,9 +157,6 @@ class WaveletDenoiser final : public Denoiser {
   }
 
  private:
-  RgbView rgb(typename Backend::Buffer& b) {
-    return {backend_.plane(b, 0), backend_.plane(b, 1), backend_.plane(b, 2)};
-  }
   WaveletParams params_;
   Mode mode_;
   Backend backend_;

@@ -1,0 +1,123 @@
+#include "app/method_options.h"
+
+#include <cmath>
+#include <map>
+#include <stdexcept>
+#include <vector>
+
+namespace svgf::app {
+
+const char* const kMethodParamUsage =
+    "  --iterations N            svgf, wavelet: a-trous iterations (default 4)\n"
+    "  --feedback-tap N          svgf: a-trous iteration fed back as history, -1 none (default 1)\n"
+    "  --alpha A                 svgf: color temporal blend floor (default 0.05)\n"
+    "  --moments-alpha A         svgf: moments temporal blend floor (default 0.2)\n"
+    "  --phi-color X             svgf: luminance edge-stopping (default 10)\n"
+    "  --phi-normal X            svgf: normal edge-stopping exponent (default 128)\n"
+    "  --phi-depth X             svgf: depth edge-stopping, 0 = no depth term (default 1)\n"
+    "  --sigma S                 gaussian: standard deviation in pixels (default 2)\n"
+    "  --radius R                gaussian: taps either side, 0 = ceil(3 sigma) (default 0)\n"
+    "  --kernel-size K           wavelet: taps per axis, 3, 5, 7 or 9 (default 5)\n"
+    "  --sigma-depth S           wavelet: depth weight scale sigma_Z (default 1)\n"
+    "  --sigma-normal S          wavelet: normal weight exponent sigma_N (default 64)\n"
+    "  --sigma-luma S            wavelet: luma weight scale sigma_L (default 4)\n"
+    "  --jbf-radius R            jbf: window radius in pixels (default 16)\n"
+    "  --jbf-levels N            jbf-atrous: levels of 5x5 taps at 1, 2, 4, ... (default 4)\n"
+    "  --jbf-sigma-coord S       jbf, jbf-atrous: pixel distance scale (default 32)\n"
+    "  --jbf-sigma-color S       jbf, jbf-atrous: color distance scale (default 0.6)\n"
+    "  --jbf-sigma-normal S      jbf, jbf-atrous: normal angle scale, radians (default 0.1)\n"
+    "  --jbf-sigma-plane S       jbf, jbf-atrous: tangent-plane distance scale (default 0.1)\n";
+
+namespace {
+
+// Which methods read each flag (parse_method's names).
+const std::map<std::string, std::vector<std::string>>& readers() {
+  static const std::map<std::string, std::vector<std::string>> r = {
+      {"iterations", {"svgf", "wavelet"}},
+      {"feedback-tap", {"svgf"}},
+      {"alpha", {"svgf"}},
+      {"moments-alpha", {"svgf"}},
+      {"phi-color", {"svgf"}},
+      {"phi-normal", {"svgf"}},
+      {"phi-depth", {"svgf"}},
+      {"sigma", {"gaussian"}},
+      {"radius", {"gaussian"}},
+      {"kernel-size", {"wavelet"}},
+      {"sigma-depth", {"wavelet"}},
+      {"sigma-normal", {"wavelet"}},
+      {"sigma-luma", {"wavelet"}},
+      {"jbf-radius", {"jbf"}},
+      {"jbf-levels", {"jbf-atrous"}},
+      {"jbf-sigma-coord", {"jbf", "jbf-atrous"}},
+      {"jbf-sigma-color", {"jbf", "jbf-atrous"}},
+      {"jbf-sigma-normal", {"jbf", "jbf-atrous"}},
+      {"jbf-sigma-plane", {"jbf", "jbf-atrous"}}};
+  return r;
+}
+
+}  // namespace
+
+const std::set<std::string>& method_param_flags() {
+  static const std::set<std::string> flags = [] {
+    std::set<std::string> s;
+    for (const auto& [flag, methods] : readers()) s.insert(flag);
+    return s;
+  }();
+  return flags;
+}
+
+void read_method_params(const Options& o, DenoiserConfig& c) {
+  SvgfParams& p = c.svgf;
+  p.iterations = o.get_int("iterations", p.iterations, 0, 12);
+  p.feedback_tap = o.get_int("feedback-tap", p.feedback_tap, -1, 11);
+  p.alpha = o.get_float("alpha", p.alpha);
+  p.moments_alpha = o.get_float("moments-alpha", p.moments_alpha);
+  p.phi_color = o.get_float("phi-color", p.phi_color);
+  p.phi_normal = o.get_float("phi-normal", p.phi_normal);
+  p.phi_depth = o.get_float("phi-depth", p.phi_depth);
+  if (!(p.alpha > 0.f && p.alpha <= 1.f) || !(p.moments_alpha > 0.f && p.moments_alpha <= 1.f))
+    throw UsageError("--alpha and --moments-alpha must lie in (0, 1]");
+  const auto finite_at_least = [](float v, float lo) { return std::isfinite(v) && v >= lo; };
+  if (!finite_at_least(p.phi_depth, 0.f) || !finite_at_least(p.phi_normal, 0.f) ||
+      !(finite_at_least(p.phi_color, 0.f) && p.phi_color > 0.f))
+    throw UsageError("--phi-depth and --phi-normal must be finite and >= 0, --phi-color > 0");
+  GaussianParams& g = c.gaussian;
+  g.sigma = o.get_float("sigma", g.sigma);
+  g.radius = o.get_int("radius", g.radius, 0, 1024);
+  WaveletParams& v = c.wavelet;
+  v.iterations = o.get_int("iterations", v.iterations, 0, 12);
+  v.kernel_size = o.get_int("kernel-size", v.kernel_size, 3, 9);
+  v.sigma_depth = o.get_float("sigma-depth", v.sigma_depth);
+  v.sigma_normal = o.get_float("sigma-normal", v.sigma_normal);
+  v.sigma_luma = o.get_float("sigma-luma", v.sigma_luma);
+  JbfParams& j = c.jbf;
+  j.radius = o.get_int("jbf-radius", j.radius, 1, 64);
+  j.levels = o.get_int("jbf-levels", c.method == Method::JbfAtrous ? 4 : 0, 0, 10);
+  j.sigma_coord = o.get_float("jbf-sigma-coord", j.sigma_coord);
+  j.sigma_color = o.get_float("jbf-sigma-color", j.sigma_color);
+  j.sigma_normal = o.get_float("jbf-sigma-normal", j.sigma_normal);
+  j.sigma_plane = o.get_float("jbf-sigma-plane", j.sigma_plane);
+  try {
+    g.validate();
+    v.validate();
+    j.validate();
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+}
+
+void check_params_apply(const Options& o, const std::string& method) {
+  for (const auto& [flag, methods] : readers()) {
+    if (!o.has(flag)) continue;
+    bool read = false;
+    std::string list;
+    for (const std::string& m : methods) {
+      read = read || m == method;
+      list += (list.empty() ? "" : ", ") + m;
+    }
+    if (!read)
+      throw UsageError("--" + flag + " applies to " + list + ", not to " + method);
+  }
+}
+
+}  // namespace svgf::app

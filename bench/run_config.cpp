@@ -1,0 +1,175 @@
+#include "bench/run_config.h"
+
+#include <algorithm>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+
+namespace svgf::bench {
+namespace {
+
+using json = nlohmann::json;
+
+// The method's parameters in a key: the ones a suite varies always, the rest only when they
+// differ from the defaults (so every configuration has its own key, and the usual ones stay
+// short).
+std::string params_key(const DenoiserConfig& d) {
+  std::ostringstream s;
+  const auto unless_default = [&](const char* tag, float v, float fallback) {
+    if (v != fallback) s << ' ' << tag << v;
+  };
+  switch (d.method) {
+    case Method::Svgf: {
+      const SvgfParams& p = d.svgf;
+      const SvgfParams def;
+      s << "it" << p.iterations << " tap" << p.feedback_tap;
+      unless_default("a", p.alpha, def.alpha);
+      unless_default("ma", p.moments_alpha, def.moments_alpha);
+      unless_default("pc", p.phi_color, def.phi_color);
+      unless_default("pn", p.phi_normal, def.phi_normal);
+      unless_default("pd", p.phi_depth, def.phi_depth);
+      break;
+    }
+    case Method::Wavelet: {
+      const WaveletParams& p = d.wavelet;
+      const WaveletParams def;
+      s << "it" << p.iterations << " k" << p.kernel_size;
+      unless_default("sz", p.sigma_depth, def.sigma_depth);
+      unless_default("sn", p.sigma_normal, def.sigma_normal);
+      unless_default("sl", p.sigma_luma, def.sigma_luma);
+      unless_default("eps", p.epsilon, def.epsilon);
+      break;
+    }
+    case Method::Gaussian:
+      s << "s" << d.gaussian.sigma;
+      if (d.gaussian.radius > 0) s << " r" << d.gaussian.radius;
+      break;
+    case Method::Jbf:
+    case Method::JbfAtrous: {
+      const JbfParams& p = d.jbf;
+      const JbfParams def;
+      if (d.method == Method::Jbf) s << "r" << p.radius;
+      else s << "l" << p.levels;
+      unless_default("sp", p.sigma_coord, def.sigma_coord);
+      unless_default("sc", p.sigma_color, def.sigma_color);
+      unless_default("sn", p.sigma_normal, def.sigma_normal);
+      unless_default("spl", p.sigma_plane, def.sigma_plane);
+      break;
+    }
+  }
+  return s.str();
+}
+
+json params_json(const DenoiserConfig& d) {
+  switch (d.method) {
+    case Method::Svgf: {
+      const SvgfParams& p = d.svgf;
+      return {{"iterations", p.iterations}, {"feedback_tap", p.feedback_tap},
+              {"alpha", p.alpha},           {"moments_alpha", p.moments_alpha},
+              {"phi_color", p.phi_color},   {"phi_normal", p.phi_normal},
+              {"phi_depth", p.phi_depth}};
+    }
+    case Method::Wavelet: {
+      const WaveletParams& p = d.wavelet;
+      return {{"iterations", p.iterations},   {"kernel_size", p.kernel_size},
+              {"sigma_depth", p.sigma_depth}, {"sigma_normal", p.sigma_normal},
+              {"sigma_luma", p.sigma_luma},   {"epsilon", p.epsilon}};
+    }
+    case Method::Gaussian:
+      return {{"sigma", d.gaussian.sigma}, {"radius", d.gaussian.radius}};
+    case Method::Jbf:
+    case Method::JbfAtrous: {
+      const JbfParams& p = d.jbf;
+      return {{"radius", p.radius},           {"levels", p.levels},
+              {"sigma_coord", p.sigma_coord}, {"sigma_color", p.sigma_color},
+              {"sigma_normal", p.sigma_normal}, {"sigma_plane", p.sigma_plane}};
+    }
+  }
+  return json::object();
+}
+
+}  // namespace
+
+int RunConfig::resolved_threads() const {
+  const int t = denoiser.threads;
+  return t > 0 ? t : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
+std::string RunConfig::key() const {
+  if (method == "noisy") return "noisy input";
+  if (!project()) return baseline.label();
+  std::string k = method + " " + to_string(denoiser.backend) + " " + to_string(denoiser.mode) +
+                  " " + params_key(denoiser);
+  const DenoiserConfig defaults;
+  if (cuda() && (denoiser.block_x != defaults.block_x || denoiser.block_y != defaults.block_y))
+    k += " b" + std::to_string(denoiser.block_x) + "x" + std::to_string(denoiser.block_y);
+  return k;
+}
+
+std::string RunConfig::label() const {
+  const bool cpu_work = method != "noisy" && !cuda();
+  return key() + (cpu_work ? " t" + std::to_string(resolved_threads()) : "");
+}
+
+RunConfig run_config(const std::string& method) {
+  RunConfig c;
+  c.method = method;
+  if (is_baseline(method)) {
+    c.baseline = baseline_by_name(method);
+    return c;
+  }
+  try {
+    c.denoiser.method = parse_method(method);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string(e.what()) + "; OpenCV baselines: " + baseline_names());
+  }
+  return c;
+}
+
+RunConfig svgf_config(Backend backend, Mode mode, int iterations, int feedback_tap, int threads) {
+  RunConfig c = run_config("svgf");
+  c.denoiser.backend = backend;
+  c.denoiser.mode = mode;
+  c.denoiser.threads = threads;
+  c.denoiser.svgf.iterations = iterations;
+  c.denoiser.svgf.feedback_tap = feedback_tap;
+  return c;
+}
+
+RunConfig wavelet_config(Backend backend, Mode mode, int kernel_size, int threads) {
+  RunConfig c = run_config("wavelet");
+  c.denoiser.backend = backend;
+  c.denoiser.mode = mode;
+  c.denoiser.threads = threads;
+  c.denoiser.wavelet.kernel_size = kernel_size;
+  return c;
+}
+
+RunConfig baseline_config(const Baseline& b, int threads) {
+  RunConfig c;
+  c.method = b.name;
+  c.baseline = b;
+  c.denoiser.threads = threads;
+  return c;
+}
+
+json config_json(const RunConfig& c) {
+  json j;
+  j["method"] = c.method;
+  j["label"] = c.label();
+  j["key"] = c.key();
+  if (c.project()) {
+    j["backend"] = to_string(c.denoiser.backend);
+    j["mode"] = to_string(c.denoiser.mode);
+    j.update(params_json(c.denoiser));
+    if (c.cuda()) j["block"] = {c.denoiser.block_x, c.denoiser.block_y};
+  } else if (c.method != "noisy") {
+    j["backend"] = "cpu";
+    j["mode"] = "opencv";
+    j["params"] = {c.baseline.p1, c.baseline.p2, c.baseline.p3};
+  }
+  if (c.method != "noisy" && !c.cuda()) j["threads"] = c.resolved_threads();
+  return j;
+}
+
+}  // namespace svgf::bench

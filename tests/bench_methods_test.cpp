@@ -1,0 +1,129 @@
+// svgf-bench runs any project method through make_denoiser: a wavelet run's stage timings carry
+// the method's own stage names and no invented costs, and its JSON reads back through the
+// results model into the chart points and the summary.
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "bench/chart_points.h"
+#include "bench/results.h"
+#include "bench/runner.h"
+#include "bench/summary.h"
+
+using namespace svgf;
+using namespace svgf::bench;
+namespace fs = std::filesystem;
+
+namespace {
+
+FrameSet fixture() {
+  return load_fixture(std::string(SVGF_SOURCE_DIR) + "/fixtures/cornell-moving", 3);
+}
+
+TimingOptions quick() {
+  TimingOptions t;
+  t.warmup = 1;
+  t.frames = 2;
+  return t;
+}
+
+}  // namespace
+
+TEST_CASE("a wavelet run is timed by the method's own stages, without a cost model",
+          "[bench][wavelet]") {
+  const RunConfig c = wavelet_config(Backend::Cpu, Mode::Exact, 3, 2);
+  const json e = time_run(c, fixture(), quick(), Ceilings{});
+  std::vector<std::string> names;
+  for (const json& s : e["stages"]) {
+    names.push_back(s["stage"].get<std::string>());
+    CHECK(s["ms"]["median"].get<double>() > 0);
+    CHECK_FALSE(s.contains("bytes_read_per_px"));  // no cost model: n/a, not a made-up count
+    CHECK_FALSE(s.contains("floor"));
+  }
+  CHECK(names == make_denoiser(c.denoiser)->stages());
+  CHECK_FALSE(e.contains("floor"));
+  CHECK(e["cost_model"] == "none");
+  CHECK(e["frames"] == 2);
+  CHECK(e["config"]["kernel_size"] == 3);
+  CHECK(e["key"] == "wavelet cpu exact it4 k3");
+}
+
+TEST_CASE("SVGF keeps its cost model and floor", "[bench][svgf]") {
+  const json e = time_run(svgf_config(Backend::Cpu, Mode::Exact, 2, 1, 2), fixture(), quick(),
+                          Ceilings{10.0, 1e10, "test"});
+  CHECK(e["cost_model"] == "bench/stage_cost.cpp");
+  REQUIRE(e.contains("floor"));
+  for (const json& s : e["stages"]) CHECK(s.contains("bytes_read_per_px"));
+}
+
+TEST_CASE("keys are unique per configuration and name the kernel size", "[bench]") {
+  std::set<std::string> keys;
+  for (int k : {3, 5, 7, 9}) keys.insert(wavelet_config(Backend::Cpu, Mode::Exact, k, 2).key());
+  RunConfig moved = wavelet_config(Backend::Cpu, Mode::Exact, 5, 2);
+  moved.denoiser.wavelet.sigma_luma = 8.f;
+  keys.insert(moved.key());
+  keys.insert(run_config("gaussian").key());
+  keys.insert(run_config("cv-gaussian").key());
+  keys.insert(svgf_config(Backend::Cpu, Mode::Exact, 4, 1, 2).key());
+  CHECK(keys.size() == 8);
+  CHECK(wavelet_config(Backend::Cpu, Mode::Exact, 5, 0).key() == kWaveletCpu);
+  CHECK(wavelet_config(Backend::Cuda, Mode::Fast, 5, 0).key() == kWaveletFast);
+  CHECK(svgf_config(Backend::Cpu, Mode::Exact, 4, 1, 0).key() == kDefaultCpu);
+  CHECK_THROWS_WITH(run_config("bilateral"), Catch::Contains("cv-bilateral"));
+}
+
+TEST_CASE("a wavelet suite entry reads back through the results model", "[bench][wavelet]") {
+  const FrameSet f = fixture();
+  const RunConfig c = wavelet_config(Backend::Cpu, Mode::Exact, 5, 2);
+  json timing = time_run(c, f, quick(), Ceilings{});
+  timing["group"] = "wavelet";
+  json quality = quality_run(c, f);
+  quality["group"] = "quality";
+  REQUIRE(quality["frames"].size() == 3);
+  const json doc = {{"suite", "cpu"},
+                    {"host", {{"cpu_model", "test"}, {"hardware_threads", 2}}},
+                    {"ceilings", json::object()},
+                    {"sections", json::object()},
+                    {"timings", {timing}},
+                    {"quality", {quality}}};
+  const fs::path dir = fs::temp_directory_path() / "svgf_bench_methods_test";
+  fs::create_directories(dir);
+  std::ofstream(dir / "cpu.json") << doc.dump();
+  const Results r = load_results(dir.string());
+  fs::remove_all(dir);
+
+  REQUIRE(r.timings("cpu", "wavelet").size() == 1);
+  CHECK(r.quality(kWaveletCpu).count("cornell-moving") == 1);
+  const std::vector<Point> pts = chart_points(r);
+  REQUIRE(pts.size() == 1);
+  CHECK(pts[0].series == "cpu_wavelet");
+  CHECK(pts[0].key == kWaveletCpu);
+  CHECK(std::isfinite(pts[0].q.psnr));
+  CHECK(pts[0].pareto_psnr);
+  const std::string md = summary_markdown(r, pts, {});
+  CHECK_THAT(md, Catch::Contains("Wavelet kernel sizes"));
+  CHECK_THAT(md, Catch::Contains("| 5x5 |"));
+  CHECK_THAT(md, Catch::Contains("**wavelet cpu exact it4 k5 t2**"));
+  CHECK_THAT(md, Catch::Contains("| atrous |"));
+  CHECK_THAT(md, Catch::Contains("n/a"));
+}
+
+TEST_CASE("OpenCV baseline entries from before the cv- names read under them", "[bench]") {
+  const json old_entry = {{"group", "quality"},
+                          {"key", "gaussian s1"},
+                          {"label", "gaussian s1 t2"},
+                          {"scene", "cut"},
+                          {"mean", {{"psnr", 20.0}}},
+                          {"frames", json::array()},
+                          {"config", {{"method", "gaussian"}, {"mode", "opencv"}}}};
+  const fs::path dir = fs::temp_directory_path() / "svgf_bench_legacy_test";
+  fs::create_directories(dir);
+  std::ofstream(dir / "cpu.json") << json({{"suite", "cpu"}, {"quality", {old_entry}}}).dump();
+  const Results r = load_results(dir.string());
+  fs::remove_all(dir);
+  CHECK(r.quality("cv-gaussian s1").count("cut") == 1);
+  CHECK(r.quality("gaussian s1").empty());
+}
