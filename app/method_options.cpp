@@ -26,7 +26,9 @@ const char* const kMethodParamUsage =
     "  --jbf-sigma-coord S       jbf, jbf-atrous: pixel distance scale (default 32)\n"
     "  --jbf-sigma-color S       jbf, jbf-atrous: color distance scale (default 0.6)\n"
     "  --jbf-sigma-normal S      jbf, jbf-atrous: normal angle scale, radians (default 0.1)\n"
-    "  --jbf-sigma-plane S       jbf, jbf-atrous: tangent-plane distance scale (default 0.1)\n";
+    "  --jbf-sigma-plane S       jbf, jbf-atrous: tangent-plane distance scale (default 0.1)\n"
+    "  --jbf-alpha A             jbf, jbf-atrous: temporal blend, 1 = no history (default 0.2)\n"
+    "  --jbf-clamp-k K           jbf, jbf-atrous: history clamp, mean +- K sigma (default 1)\n";
 
 namespace {
 
@@ -51,7 +53,9 @@ const std::map<std::string, std::vector<std::string>>& readers() {
       {"jbf-sigma-coord", {"jbf", "jbf-atrous"}},
       {"jbf-sigma-color", {"jbf", "jbf-atrous"}},
       {"jbf-sigma-normal", {"jbf", "jbf-atrous"}},
-      {"jbf-sigma-plane", {"jbf", "jbf-atrous"}}};
+      {"jbf-sigma-plane", {"jbf", "jbf-atrous"}},
+      {"jbf-alpha", {"jbf", "jbf-atrous"}},
+      {"jbf-clamp-k", {"jbf", "jbf-atrous"}}};
   return r;
 }
 
@@ -97,6 +101,8 @@ void read_method_params(const Options& o, DenoiserConfig& c) {
   j.sigma_color = o.get_float("jbf-sigma-color", j.sigma_color);
   j.sigma_normal = o.get_float("jbf-sigma-normal", j.sigma_normal);
   j.sigma_plane = o.get_float("jbf-sigma-plane", j.sigma_plane);
+  j.alpha = o.get_float("jbf-alpha", j.alpha);
+  j.clamp_k = o.get_float("jbf-clamp-k", j.clamp_k);
   try {
     g.validate();
     v.validate();

@@ -54,6 +54,8 @@ std::string params_key(const DenoiserConfig& d) {
       unless_default("sc", p.sigma_color, def.sigma_color);
       unless_default("sn", p.sigma_normal, def.sigma_normal);
       unless_default("spl", p.sigma_plane, def.sigma_plane);
+      unless_default("a", p.alpha, def.alpha);
+      unless_default("k", p.clamp_k, def.clamp_k);
       break;
     }
   }
@@ -82,7 +84,8 @@ json params_json(const DenoiserConfig& d) {
       const JbfParams& p = d.jbf;
       return {{"radius", p.radius},           {"levels", p.levels},
               {"sigma_coord", p.sigma_coord}, {"sigma_color", p.sigma_color},
-              {"sigma_normal", p.sigma_normal}, {"sigma_plane", p.sigma_plane}};
+              {"sigma_normal", p.sigma_normal}, {"sigma_plane", p.sigma_plane},
+              {"alpha", p.alpha},             {"clamp_k", p.clamp_k}};
     }
   }
   return json::object();

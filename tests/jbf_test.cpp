@@ -267,6 +267,88 @@ void atrous_against_full(const TestDevice& d) {
   }
 }
 
+// Two frames of a static view: the second frame's output is lerp(clamp(F0), F1, alpha) with
+// the clamp per channel to mean +- k sigma of F1 over the 7x7 block (inside the image), F0 and
+// F1 the frames' filtered colors (read back as the "filtered" buffer). In double, from the
+// homework's formula; every alpha and k moves the result.
+void temporal_known_answer(const TestDevice& d) {
+  const int w = 19, h = 13;
+  Frame f0 = bumpy_frame(w, h, 21), f1 = f0;
+  test::fill_uniform(f1.color, 0.f, 1.5f, 99);  // not bumpy_frame's own seed (22)
+  for (const std::pair<float, float>& ak : {std::pair<float, float>{0.2f, 1.f}, {0.5f, 0.3f},
+                                            {0.2f, 100.f}}) {
+    JbfParams p;
+    p.radius = 3;
+    p.alpha = ak.first;
+    p.clamp_k = ak.second;
+    auto den = jbf_on(d, Method::Jbf, p);
+    Image out0, out1;
+    den->denoise(f0, out0);
+    const Image filtered0 = den->read_buffer(jbf_buffer::kFiltered);
+    test::require_identical(out0, filtered0, "first frame: the filtered color");
+    den->denoise(f1, out1);
+    const Image filtered1 = den->read_buffer(jbf_buffer::kFiltered);
+    test::require_identical(den->read_buffer(jbf_buffer::kAccumulated), out1, "history = output");
+    int clamped = 0;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        if (!(f1.depth.at(x, y, 0) > 0)) continue;
+        for (int c = 0; c < 3; ++c) {
+          double m1 = 0, m2 = 0;
+          int n = 0;
+          for (int dy = -3; dy <= 3; ++dy)
+            for (int dx = -3; dx <= 3; ++dx) {
+              if (x + dx < 0 || y + dy < 0 || x + dx >= w || y + dy >= h) continue;
+              const double v = filtered1.at(x + dx, y + dy, c);
+              m1 += v;
+              m2 += v * v;
+              ++n;
+            }
+          const double mean = m1 / n, sd = std::sqrt(std::max(0.0, m2 / n - mean * mean));
+          const double hist = filtered0.at(x, y, c);
+          const double held = std::min(std::max(hist, mean - p.clamp_k * sd), mean + p.clamp_k * sd);
+          clamped += held != hist;
+          const double want = held + (filtered1.at(x, y, c) - held) * p.alpha;
+          INFO("alpha " << p.alpha << " k " << p.clamp_k << " at (" << x << "," << y << ") " << c);
+          REQUIRE(out1.at(x, y, c) == Approx(want).epsilon(d.tolerance(1e-5)).margin(1e-6));
+        }
+      }
+    if (p.clamp_k < 50.f) REQUIRE(clamped > 0);  // the clamp was exercised
+    else REQUIRE(clamped == 0);
+  }
+}
+
+// No history where the previous pixel shows another object, lies outside the image, or after
+// reset(): those pixels take this frame's filtered color.
+void temporal_invalid_history(const TestDevice& d) {
+  const int w = 16, h = 10;
+  Frame f0 = bumpy_frame(w, h, 31), f1 = f0;
+  test::fill_uniform(f1.color, 0.f, 1.5f, 98);  // not bumpy_frame's own seed (32)
+  for (int y = 0; y < h; ++y) f1.mesh_id[y * w + 5] = 7;  // a new object in column 5
+  for (int y = 0; y < h; ++y) f1.motion.at(w - 1, y, 0) = 4.f;  // the last column came from outside
+  JbfParams p;
+  p.radius = 2;
+  auto den = jbf_on(d, Method::Jbf, p);
+  Image out;
+  den->denoise(f0, out);
+  den->denoise(f1, out);
+  const Image filtered = den->read_buffer(jbf_buffer::kFiltered);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const bool fresh = x == 5 || x == w - 1;
+      INFO("(" << x << "," << y << ")");
+      if (fresh) REQUIRE(out.at(x, y, 1) == filtered.at(x, y, 1));
+    }
+  int with_history = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) with_history += out.at(x, y, 1) != filtered.at(x, y, 1);
+  INFO(with_history << " pixels differ from the filtered color");
+  REQUIRE(with_history > w * h / 2);  // elsewhere the history counts
+  den->reset();
+  den->denoise(f1, out);
+  test::require_identical(out, den->read_buffer(jbf_buffer::kFiltered), "after reset");
+}
+
 }  // namespace
 
 SVGF_DEVICE_TEST("jbf: one pass against a double-precision reference, both forms, every sigma",
@@ -279,6 +361,10 @@ SVGF_DEVICE_TEST("jbf: NaN, Inf and negative color are replaced by 0 and counted
                  bad_samples_replaced)
 SVGF_DEVICE_TEST("jbf: the a-trous form against the full window on a rendered frame", "[jbf]",
                  atrous_against_full)
+SVGF_DEVICE_TEST("jbf: temporal accumulation, the clamped history blended with alpha", "[jbf]",
+                 temporal_known_answer)
+SVGF_DEVICE_TEST("jbf: no history across an object change, from outside, or after reset",
+                 "[jbf]", temporal_invalid_history)
 
 TEST_CASE("jbf: same bits on 1 and 2 threads; stages, defaults and errors", "[jbf]") {
   const Frame f = bumpy_frame(29, 17, 11);
@@ -289,9 +375,9 @@ TEST_CASE("jbf: same bits on 1 and 2 threads; stages, defaults and errors", "[jb
   auto two = jbf_on(test::kCpu, Method::Jbf, small, 2);
   two->denoise(f, b);
   test::require_identical(a, b, "1 vs 2 threads");
-  REQUIRE(two->stages() == std::vector<std::string>{"sanitize", "filter"});
+  REQUIRE(two->stages() == std::vector<std::string>{"sanitize", "filter", "temporal"});
   REQUIRE(jbf_on(test::kCpu, Method::JbfAtrous, small)->stages() ==
-          std::vector<std::string>{"sanitize", "atrous"});
+          std::vector<std::string>{"sanitize", "atrous", "temporal"});
   // The homework framework's defaults (docs/jbf.md: src/denoiser.h, Filter()).
   const JbfParams p;
   REQUIRE(p.radius == 16);
@@ -299,6 +385,8 @@ TEST_CASE("jbf: same bits on 1 and 2 threads; stages, defaults and errors", "[jb
   REQUIRE(p.sigma_color == 0.6f);
   REQUIRE(p.sigma_normal == 0.1f);
   REQUIRE(p.sigma_plane == 0.1f);
+  REQUIRE(p.alpha == 0.2f);
+  REQUIRE(p.clamp_k == 1.f);
   REQUIRE(parse_method("jbf") == Method::Jbf);
   REQUIRE(parse_method("jbf-atrous") == Method::JbfAtrous);
   auto bad = [](auto change) {
@@ -311,6 +399,8 @@ TEST_CASE("jbf: same bits on 1 and 2 threads; stages, defaults and errors", "[jb
   REQUIRE_THROWS_WITH(bad([](JbfParams& q) { q.sigma_color = 0.f; }), Catch::Contains("--jbf-sigma-color"));
   REQUIRE_THROWS_WITH(bad([](JbfParams& q) { q.sigma_normal = NAN; }), Catch::Contains("--jbf-sigma-normal"));
   REQUIRE_THROWS_WITH(bad([](JbfParams& q) { q.sigma_plane = -2.f; }), Catch::Contains("--jbf-sigma-plane"));
+  REQUIRE_THROWS_WITH(bad([](JbfParams& q) { q.alpha = 0.f; }), Catch::Contains("--jbf-alpha"));
+  REQUIRE_THROWS_WITH(bad([](JbfParams& q) { q.clamp_k = -1.f; }), Catch::Contains("--jbf-clamp-k"));
   Frame no_position = f;
   no_position.position = Image();
   Image out;

@@ -15,6 +15,7 @@
 #include "core/sanitize.h"
 #include "methods/jbf/filter.h"
 #include "methods/jbf/params.h"
+#include "methods/jbf/temporal.h"
 
 namespace svgf {
 
@@ -22,21 +23,29 @@ namespace jbf_stage {
 inline constexpr const char* kSanitize = "sanitize";
 inline constexpr const char* kFilter = "filter";  // the full window
 inline constexpr const char* kAtrous = "atrous";  // the a-trous levels
+inline constexpr const char* kTemporal = "temporal";
 }  // namespace jbf_stage
 
 namespace jbf_buffer {
 inline constexpr const char* kSanitized = "sanitized";
+inline constexpr const char* kFiltered = "filtered";        // this frame's spatial result
+inline constexpr const char* kAccumulated = "accumulated";  // the history the next frame reads
 }  // namespace jbf_buffer
 
 struct JbfFrameBuffers {
-  FrameInputs in;  // with world positions
+  FrameInputs in;          // with world positions
+  GuideView prev_guides;   // the previous frame's
   RgbView sanitized;
   RgbView signal[2];
+  RgbView filtered;
+  ConstRgbView prev_accumulated;
+  RgbView accumulated;
   RgbView output;
 };
 
 template <class Arith, class Engine>
-void run_jbf_frame(Engine& engine, const JbfFrameBuffers& b, const JbfParams& p) {
+void run_jbf_frame(Engine& engine, const JbfFrameBuffers& b, const JbfParams& p,
+                   bool has_history) {
   namespace stage = jbf_stage;
   const GuideView& g = b.in.guides;
   const int w = g.width, h = g.height;
@@ -44,17 +53,30 @@ void run_jbf_frame(Engine& engine, const JbfFrameBuffers& b, const JbfParams& p)
   const JbfScales scales = JbfScales::of(p);
   if (!p.atrous()) {
     engine.run(stage::kFilter,
-               JbfPass<Arith>{g, b.in.position, b.sanitized, b.output, p.radius, 1, false, scales},
+               JbfPass<Arith>{g, b.in.position, b.sanitized, b.filtered, p.radius, 1, false,
+                              scales},
                w, h);
-    return;
+  } else {
+    ConstRgbView in = b.sanitized;
+    for (int level = 0; level < p.levels; ++level) {
+      const RgbView out = level + 1 == p.levels ? b.filtered : b.signal[level % 2];
+      engine.run(stage::kAtrous,
+                 JbfPass<Arith>{g, b.in.position, in, out, 2, 1 << level, true, scales}, w, h);
+      in = out;
+    }
   }
-  ConstRgbView in = b.sanitized;
-  for (int level = 0; level < p.levels; ++level) {
-    const RgbView out = level + 1 == p.levels ? b.output : b.signal[level % 2];
-    engine.run(stage::kAtrous,
-               JbfPass<Arith>{g, b.in.position, in, out, 2, 1 << level, true, scales}, w, h);
-    in = out;
-  }
+  // Exact arithmetic in every mode: a few operations a pixel besides the 7x7 moments.
+  JbfTemporal t;
+  t.guides = g;
+  t.prev_guides = b.prev_guides;
+  t.filtered = b.filtered;
+  t.prev_accumulated = b.prev_accumulated;
+  t.accumulated = b.accumulated;
+  t.output = b.output;
+  t.has_history = has_history && p.alpha < 1.f;
+  t.alpha = p.alpha;
+  t.clamp_k = p.clamp_k;
+  engine.run(stage::kTemporal, t, w, h);
 }
 
 template <class Backend>
@@ -63,7 +85,7 @@ class JbfDenoiser final : public Denoiser {
   JbfDenoiser(const JbfParams& params, const EngineConfig& config)
       : params_(params), mode_(config.mode), backend_(config) {
     params_.validate();
-    backend_.set_method_planes(3 + 3 + (params_.atrous() ? 6 : 0));
+    backend_.set_method_planes(3 + 3 + 6 + (params_.atrous() ? 6 : 0));
   }
 
   void denoise(const Frame& in, Image& out) override {
@@ -73,6 +95,9 @@ class JbfDenoiser final : public Denoiser {
                                   ": jbf needs the 'position' channel (world positions)");
     if (backend_.resize(in.width(), in.height())) {
       backend_.allocate(sanitized_, 3, "jbf sanitized color");
+      backend_.allocate(filtered_, 3, "jbf filtered color");
+      for (int s = 0; s < 2; ++s) backend_.allocate(accumulated_[s], 3, "jbf accumulation");
+      has_history_ = false;
       if (params_.atrous()) {
         backend_.allocate(signal_[0], 3, "jbf a-trous signal 0");
         backend_.allocate(signal_[1], 3, "jbf a-trous signal 1");
@@ -82,7 +107,11 @@ class JbfDenoiser final : public Denoiser {
     engine.begin_frame();
     JbfFrameBuffers b;
     b.in = backend_.inputs(in, /*position=*/true);
+    b.prev_guides = backend_.previous_guides();
     b.sanitized = backend_.rgb(sanitized_);
+    b.filtered = backend_.rgb(filtered_);
+    b.prev_accumulated = backend_.rgb(accumulated_[slot_]);
+    b.accumulated = backend_.rgb(accumulated_[1 - slot_]);
     if (params_.atrous()) {
       b.signal[0] = backend_.rgb(signal_[0]);
       b.signal[1] = backend_.rgb(signal_[1]);
@@ -90,16 +119,18 @@ class JbfDenoiser final : public Denoiser {
     b.output = backend_.output(out);
 #if defined(__CUDACC__)
     if (mode_ == Mode::Fast)
-      run_jbf_frame<FastArith>(engine, b, params_);
+      run_jbf_frame<FastArith>(engine, b, params_, has_history_);
     else
 #endif
-      run_jbf_frame<ExactArith>(engine, b, params_);
+      run_jbf_frame<ExactArith>(engine, b, params_, has_history_);
     backend_.finish(in, out);
+    slot_ = 1 - slot_;
+    has_history_ = true;
     report_.times = engine.times();
     report_.replaced_samples = engine.counted();
   }
 
-  void reset() override {}  // no history yet
+  void reset() override { has_history_ = false; }
   const FrameReport& last_report() const override { return report_; }
   std::string description() const override {
     return (params_.atrous() ? "jbf-atrous " + std::to_string(params_.levels) + " levels "
@@ -107,20 +138,30 @@ class JbfDenoiser final : public Denoiser {
            backend_.description();
   }
   std::vector<std::string> stages() const override {
-    return {jbf_stage::kSanitize, params_.atrous() ? jbf_stage::kAtrous : jbf_stage::kFilter};
+    return {jbf_stage::kSanitize, params_.atrous() ? jbf_stage::kAtrous : jbf_stage::kFilter,
+            jbf_stage::kTemporal};
   }
-  std::vector<std::string> debug_buffers() const override { return {jbf_buffer::kSanitized}; }
+  std::vector<std::string> debug_buffers() const override {
+    return {jbf_buffer::kSanitized, jbf_buffer::kFiltered, jbf_buffer::kAccumulated};
+  }
   Image read_buffer(std::string_view name) const override {
-    if (name != jbf_buffer::kSanitized) throw unknown_buffer("jbf", name, debug_buffers());
+    const typename Backend::Buffer* buffer =
+        name == jbf_buffer::kSanitized     ? &sanitized_
+        : name == jbf_buffer::kFiltered    ? &filtered_
+        : name == jbf_buffer::kAccumulated ? &accumulated_[slot_]  // written by the last frame
+                                           : nullptr;
+    if (!buffer) throw unknown_buffer("jbf", name, debug_buffers());
     if (backend_.width() == 0) return Image();
-    return backend_.read(sanitized_);
+    return backend_.read(*buffer);
   }
 
  private:
   JbfParams params_;
   Mode mode_;
   Backend backend_;
-  typename Backend::Buffer sanitized_, signal_[2];
+  typename Backend::Buffer sanitized_, filtered_, accumulated_[2], signal_[2];
+  int slot_ = 0;  // accumulated_[slot_] is the history the next frame reads
+  bool has_history_ = false;
   FrameReport report_;
 };
 

@@ -1,6 +1,6 @@
 #pragma once
 // The joint bilateral filter of GAMES202 homework 5 (real-time ray tracing denoising): its
-// spatial filter, in full-window and a-trous form. Defaults are the homework framework's
+// spatial filter, in full-window and a-trous form, and its temporal accumulation. Defaults are the homework framework's
 // (src/denoiser.h and Filter() in src/denoiser.cpp of the framework skeleton; docs/jbf.md).
 #include <cmath>
 #include <stdexcept>
@@ -19,6 +19,10 @@ struct JbfParams {
   float sigma_color = 0.6f;   // m_sigmaColor: RGB distance of the noisy color
   float sigma_normal = 0.1f;  // m_sigmaNormal: radians between the normals
   float sigma_plane = 0.1f;   // m_sigmaPlane: distance from the tangent plane, over distance
+  // Temporal accumulation (methods/jbf/temporal.h): the blend toward this frame's filtered color
+  // (m_alpha; 1 turns the history off) and the clamp's k (m_colorBoxK).
+  float alpha = 0.2f;
+  float clamp_k = 1.f;
 
   bool atrous() const { return levels > 0; }
   // std::invalid_argument naming the flag.
@@ -36,6 +40,10 @@ struct JbfParams {
     check(sigma_color, "--jbf-sigma-color");
     check(sigma_normal, "--jbf-sigma-normal");
     check(sigma_plane, "--jbf-sigma-plane");
+    if (!(alpha > 0.f && alpha <= 1.f))
+      fail("--jbf-alpha must be in (0, 1], got " + std::to_string(alpha));
+    if (!(std::isfinite(clamp_k) && clamp_k >= 0.f))
+      fail("--jbf-clamp-k must be finite and >= 0, got " + std::to_string(clamp_k));
   }
 };
 
