@@ -7,6 +7,9 @@
 # Bundles made on the build machine with
 #   ../shared/gpu/bundle .gpu/tests build/tests/svgf_gpu_tests build/tests/svgf_stage_tests \
 #     build/tests/svgf_pipeline_tests build/tests/svgf_opencv_tests
+# (svgf_opencv_tests brings cv::ximgproc's libraries, about 50 MiB compressed: with the tree
+# that passes the 64 MiB a call may carry, so bundle it alone or leave it out; a missing
+# binary shows as exit 127 in the summary line)
 #   ../shared/gpu/bundle .gpu/bench build-bench/bench/svgf-bench          (this build)
 #   ../shared/gpu/bundle .gpu/base  OLD/build-bench/bench/svgf-bench      (optional baseline)
 # Usage: kernels_cuda/run_gpu_checks.sh [LOG_DIR [tests|speed|all]]   (logs default to $OUT)
