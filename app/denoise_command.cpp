@@ -63,6 +63,9 @@ DenoiserConfig config_from(const Options& o) {
   c.backend = parse_backend(o.get("backend", "auto"));
   c.mode = parse_mode(o.get("mode", "exact"));
   c.threads = o.get_int("threads", 0, 0, 1024);
+  // A flag the chosen method does not read is an error, not silently ignored: the report
+  // would otherwise describe a setting that was never used.
+  check_params_apply(o, to_string(c.method));
   read_method_params(o, c);
   return c;
 }

@@ -99,6 +99,10 @@ TEST_CASE("svgf denoise --method wavelet: its flags reach the filter, bad values
     REQUIRE_THROWS_WITH(app::denoise_command({in.string(), out.string(), "--backend", "cpu",
                                               "--method", "wavelet", flag, value}),
                         Catch::Contains(flag));
+  // A flag of another method is an error naming it, not silently ignored.
+  REQUIRE_THROWS_WITH(app::denoise_command({in.string(), out.string(), "--backend", "cpu",
+                                            "--method", "wavelet", "--phi-color", "5"}),
+                      Catch::Contains("--phi-color applies to svgf, not to wavelet"));
   fs::remove_all(in);
   fs::remove_all(out);
 }
