@@ -141,11 +141,8 @@ void pass_against_double(const TestDevice& d) {
                              form.radius, form.step, form.b3, JbfScales::of(p)},
               w, h, "jbf pass");
       });
-      const Image want = reference_pass(f, f.color, form.radius, form.step, form.b3, p);
-      double worst = 0;
-      for (size_t i = 0; i < want.data().size(); ++i)
-        worst = std::max(worst, std::fabs(double(out.data()[i]) - want.data()[i]) /
-                                    std::max(1e-3, std::fabs(double(want.data()[i]))));
+      const double worst = test::max_relative_difference(
+          out, reference_pass(f, f.color, form.radius, form.step, form.b3, p), 1e-3);
       INFO(set.first << ", radius " << form.radius << " step " << form.step
                      << (form.b3 ? " (a-trous)" : " (full)") << ": worst relative difference "
                      << worst);

@@ -90,14 +90,6 @@ Image reference_pass(const Frame& f, const Image& in, const Image& luma, const I
   return out;
 }
 
-double worst_relative(const Image& got, const Image& want) {
-  double worst = 0;
-  for (size_t i = 0; i < want.data().size(); ++i)
-    worst = std::max(worst, std::fabs(double(got.data()[i]) - want.data()[i]) /
-                                std::max(1e-3, std::fabs(double(want.data()[i]))));
-  return worst;
-}
-
 void pass_against_double(const TestDevice& d) {
   const int w = 29, h = 23;
   const Frame f = bumpy_frame(w, h, 3);
@@ -136,7 +128,8 @@ void pass_against_double(const TestDevice& d) {
                                              p.epsilon, Power::of(p.sigma_normal)},
               w, h, "wavelet pass");
       });
-      const double worst = worst_relative(out, reference_pass(f, in, luma, dev, step, p));
+      const double worst =
+          test::max_relative_difference(out, reference_pass(f, in, luma, dev, step, p), 1e-3);
       INFO(name << ", step " << step << ": worst relative difference " << worst);
       REQUIRE(worst < d.tolerance(2e-5));
     }

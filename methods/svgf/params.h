@@ -1,6 +1,7 @@
 #pragma once
 // Every tunable of the SVGF pipeline, with its default, in one place. Defaults follow NVIDIA
 // Falcor's SVGFPass (which follows Schied et al. 2017); docs/svgf.md lists where each comes from.
+#include "core/binomial.h"
 #include "core/hd.h"
 
 namespace svgf {
@@ -44,8 +45,8 @@ struct SvgfParams {
 
 // B3-spline a-trous kernel (1/16, 1/4, 3/8, 1/4, 1/16) at offset |d| in 0..2; the 2-D weight is
 // b3(|dx|) * b3(|dy|). Exact binary fractions: every weight and product is exact.
-SVGF_HD float b3_weight(int d) { return d == 0 ? 0.375f : (d == 1 ? 0.25f : 0.0625f); }
+SVGF_HD float b3_weight(int d) { return binomial_weight(5, d); }
 // 3x3 Gaussian (1/4, 1/2, 1/4) of the variance prefilter (paper Eq. 5), at offset |d| in 0..1.
-SVGF_HD float gauss3_weight(int d) { return d == 0 ? 0.5f : 0.25f; }
+SVGF_HD float gauss3_weight(int d) { return binomial_weight(3, d); }
 
 }  // namespace svgf

@@ -5,6 +5,7 @@
 // the 3x3 means around the pixel (the spatial estimate SVGF also falls back to): spread =
 // sqrt(|mean(Y^2) - mean(Y)^2|), taps outside the image skipped. Exact arithmetic in every
 // mode (two cheap passes; fast mode differs in the a-trous iterations only).
+#include "core/binomial.h"
 #include "core/det_math.h"
 #include "core/views.h"
 
@@ -46,7 +47,7 @@ struct WaveletDeviationKernel {
       for (int dx = -1; dx <= 1; ++dx) {
         const int xq = x + dx, yq = y + dy;
         if (xq < 0 || yq < 0 || xq >= width || yq >= height) continue;
-        const float k = (dx == 0 ? 0.5f : 0.25f) * (dy == 0 ? 0.5f : 0.25f);
+        const float k = binomial_weight(3, dx) * binomial_weight(3, dy);
         sum = sum + k * spread[yq * width + xq];
         weight = weight + k;
       }
