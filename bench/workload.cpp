@@ -65,9 +65,8 @@ void parse_size(const std::string& text, int& width, int& height) {
 
 namespace {
 
-// Optional channels the filters never read (emission they do read): dropped to save memory.
+// Optional channels no method reads (emission and position some do): dropped to save memory.
 void drop_unused(Frame& f) {
-  f.position = Image();
   f.direct = Image();
   f.indirect = Image();
 }
@@ -132,9 +131,12 @@ FrameSet generate_frames(const std::string& scene, int width, int height, int co
                  .string();
       if (fs::exists(path)) {
         Frame f = io::read_frame(path);
-        drop_unused(f);
-        s.frames.push_back(std::move(f));
-        continue;
+        // Older caches were written without the world positions the JBF reads: render again.
+        if (!f.position.empty()) {
+          drop_unused(f);
+          s.frames.push_back(std::move(f));
+          continue;
+        }
       }
     }
     if (!renderer) renderer = std::make_unique<gbuffer::Renderer>();
