@@ -1,6 +1,7 @@
 #include "kernels_cpu/jbf_cpu.h"
 
 #include "kernels_cpu/cpu_backend.h"
+#include "kernels_cpu/jbf_rows.h"
 #include "methods/jbf/denoiser.h"
 
 namespace svgf::cpu {

@@ -3,20 +3,10 @@
 #include <algorithm>
 #include <vector>
 
-#include "kernels_cpu/parallel_for.h"
+#include "kernels_cpu/row_tools.h"
 
 namespace svgf::cpu {
 namespace {
-
-// Per-task scratch: one row's per-pixel centre terms and running sums.
-struct RowScratch {
-  std::vector<float> a, b, sw, s0, s1, s2, s3;
-  explicit RowScratch(int w) : a(w), b(w), sw(w), s0(w), s1(w), s2(w), s3(w) {}
-};
-
-// GCC vectorizes the tap loops only as functions of their own whose arrays are all restrict
-// arguments: inlined into the row, the restrict promise is lost and the loop stays scalar.
-#define SVGF_TAP_LOOP __attribute__((noinline))
 
 // One a-trous tap (dx, dy) for pixels x0..x1 of a row: i indexes the centre, j = i + offset the
 // tap. The body is the per-pixel kernel's loop body.
@@ -109,36 +99,6 @@ SVGF_TAP_LOOP void variance_tap(const float* __restrict depth, const float* __re
   }
 }
 
-// Runs body(power) with the normal-weight power as a compile-time policy for the usual
-// exponents 2^0 .. 2^10, else the run-time one. Same bits either way (NormalPower).
-template <class Body>
-void with_normal_power(float phi_normal, const Body& body) {
-  const NormalPower<> p = NormalPower<>::of(phi_normal);
-  switch (p.squarings) {
-    case 0: return body(NormalPowerFixed<0>());
-    case 1: return body(NormalPowerFixed<1>());
-    case 2: return body(NormalPowerFixed<2>());
-    case 3: return body(NormalPowerFixed<3>());
-    case 4: return body(NormalPowerFixed<4>());
-    case 5: return body(NormalPowerFixed<5>());
-    case 6: return body(NormalPowerFixed<6>());
-    case 7: return body(NormalPowerFixed<7>());
-    case 8: return body(NormalPowerFixed<8>());
-    case 9: return body(NormalPowerFixed<9>());
-    case 10: return body(NormalPowerFixed<10>());
-    default: return body(p);
-  }
-}
-
-template <class Rows>
-void parallel_rows(int height, const Rows& rows) {
-  tbb::parallel_for(tbb::blocked_range<int>(0, height, kRowsPerTask),
-                    [&](const tbb::blocked_range<int>& r) {
-                      ScopedIeeeFloat ieee;
-                      rows(r.begin(), r.end());
-                    });
-}
-
 // --- a-trous ---------------------------------------------------------------------------------
 
 template <class Power>
@@ -148,13 +108,13 @@ void atrous_row(const AtrousKernel& k, const float* __restrict lum, int y, RowSc
   const SvgfParams& p = k.params;
   const int w = g.width, h = g.height, row = y * w;
   const float* __restrict var_in = k.in.variance;
-  float* __restrict inv_phi_l = s.a.data();  // holds the prefiltered variance first
-  float* __restrict inv_phi_z = s.b.data();
-  float* __restrict sw = s.sw.data();
-  float* __restrict sr = s.s0.data();
-  float* __restrict sg = s.s1.data();
-  float* __restrict sb = s.s2.data();
-  float* __restrict sv = s.s3.data();
+  float* __restrict inv_phi_l = s[0];  // holds the prefiltered variance first
+  float* __restrict inv_phi_z = s[1];
+  float* __restrict sw = s[2];
+  float* __restrict sr = s[3];
+  float* __restrict sg = s[4];
+  float* __restrict sb = s[5];
+  float* __restrict sv = s[6];
 
   // Centre terms: prefiltered variance (into inv_phi_l), reciprocal tolerances, the centre's own contribution.
   if (y > 0 && y < h - 1 && w > 2) {
@@ -239,13 +199,13 @@ void variance_span(const VarianceKernel& k, const float* __restrict lum, int y, 
   const SvgfParams& p = k.params;
   const int w = g.width, h = g.height, row = y * w;
   const float young = static_cast<float>(p.spatial_variance_history);
-  float* __restrict inv_phi_z = s.a.data();
-  float* __restrict sw = s.sw.data();
-  float* __restrict sr = s.s0.data();
-  float* __restrict sg = s.s1.data();
-  float* __restrict sb = s.s2.data();
-  float* __restrict sm1 = s.s3.data();
-  float* __restrict sm2 = s.b.data();
+  float* __restrict inv_phi_z = s[0];
+  float* __restrict sw = s[2];
+  float* __restrict sr = s[3];
+  float* __restrict sg = s[4];
+  float* __restrict sb = s[5];
+  float* __restrict sm1 = s[6];
+  float* __restrict sm2 = s[1];
   for (int x = lo; x < hi; ++x) {
     inv_phi_z[x] = inv_depth_tolerance(p.spatial_variance_phi_depth, g.depth_fwidth(row + x),
                                        p.depth_gradient_floor);
@@ -320,7 +280,7 @@ void run_atrous_rows(const AtrousKernel& kernel, int width, int height) {
   const std::vector<float> lum = luminance_plane(kernel.in.color, width, height);
   with_normal_power(kernel.params.phi_normal, [&](const auto& power) {
     parallel_rows(height, [&](int y0, int y1) {
-      RowScratch s(width);
+      RowScratch s(7, width);
       for (int y = y0; y < y1; ++y) atrous_row(kernel, lum.data(), y, s, power);
     });
   });
@@ -330,7 +290,7 @@ void run_variance_rows(const VarianceKernel& kernel, int width, int height) {
   const std::vector<float> lum = luminance_plane(kernel.accumulated.color, width, height);
   with_normal_power(kernel.params.phi_normal, [&](const auto& power) {
     parallel_rows(height, [&](int y0, int y1) {
-      RowScratch s(width);
+      RowScratch s(7, width);
       for (int y = y0; y < y1; ++y) variance_row(kernel, lum.data(), y, s, power);
     });
   });

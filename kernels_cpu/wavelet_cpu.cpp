@@ -1,6 +1,7 @@
 #include "kernels_cpu/wavelet_cpu.h"
 
 #include "kernels_cpu/cpu_backend.h"
+#include "kernels_cpu/wavelet_rows.h"
 #include "methods/wavelet/denoiser.h"
 
 namespace svgf::cpu {

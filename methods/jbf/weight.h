@@ -37,7 +37,8 @@ SVGF_HD float jbf_guide_exponent(const JbfSample& i, const JbfSample& j, const J
   const float e_normal = angle * angle * s.normal;
   const Vec3 dx = j.position - i.position;
   const float len = sqrtf(dot(dx, dx));
-  const float d_plane = len > 0.f ? dot(i.normal, dx) / len : 0.f;
+  const float ratio = dot(i.normal, dx) / len;  // both sides computed: a select, so the CPU
+  const float d_plane = len > 0.f ? ratio : 0.f;  // rows vectorize it
   const float e_plane = d_plane * d_plane * s.plane;
   return (e_color + e_normal) + e_plane;
 }
@@ -45,8 +46,10 @@ SVGF_HD float jbf_guide_exponent(const JbfSample& i, const JbfSample& j, const J
 // J(i, j) for a tap at squared pixel distance d2; 0 where a guide is NaN.
 template <class Arith>
 SVGF_HD float jbf_weight(const JbfSample& i, const JbfSample& j, float d2, const JbfScales& s) {
+  // e is >= 0 (squares times positive scales) or NaN. The max takes fast mode's NaN to 0 (exact
+  // mode's exp already gives 0); a select on e instead would stop the CPU rows vectorizing.
   const float e = d2 * s.coord + jbf_guide_exponent<Arith>(i, j, s);
-  return e >= 0.f ? Arith::exp_nonpositive(0.f - e) : 0.f;
+  return Arith::max(Arith::exp_nonpositive(0.f - e), 0.f);
 }
 
 }  // namespace svgf

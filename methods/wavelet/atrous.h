@@ -14,6 +14,27 @@
 
 namespace svgf {
 
+// What the centre pixel p brings to the weights of its taps.
+struct WaveletCentre {
+  float depth;
+  Vec3 normal;
+  float luma;
+  float inv_sigma_luma;  // 1 / (sigma_L Dev_p + eps)
+};
+
+// W = W_Z W_N W_L of the tap q (the binomial factor is the caller's). NaN guide data drops the
+// term it is in (max) or zeroes the weight (the normal term). One function for the per-pixel
+// kernel below and the CPU's vectorized rows (kernels_cpu/wavelet_rows.cpp).
+template <class Arith, class Power>
+SVGF_HD float wavelet_weight(const WaveletCentre& p, float depth_q, Vec3 normal_q, float luma_q,
+                             float inv_sigma_depth, const Power& normal_power) {
+  const float e_z = Arith::abs(p.depth - depth_q) * inv_sigma_depth;
+  const float e_l = Arith::abs(p.luma - luma_q) * p.inv_sigma_luma;
+  const float w_n = normal_power(normal_cosine<Arith>(p.normal, normal_q));
+  return Arith::positive_part(Arith::exp_neg_sum(Arith::max(e_l, 0.f), Arith::max(e_z, 0.f)) *
+                              w_n);
+}
+
 template <class Arith, class Power>
 struct WaveletIteration {
   GuideView guides;
@@ -28,6 +49,11 @@ struct WaveletIteration {
   float epsilon = 0.01f;
   Power normal_power;
 
+  // 1 / (sigma_L Dev_p + eps), the only per-pixel term besides the guides.
+  SVGF_HD float inv_sigma_luma(int i) const {
+    return Arith::recip(sigma_luma * deviation[i] + epsilon);
+  }
+
   SVGF_HD void operator()(int x, int y) const {
     const int i = guides.index(x, y);
     const Vec3 center = in.load(i);
@@ -36,9 +62,7 @@ struct WaveletIteration {
       out.store(i, center);
       return;
     }
-    const Vec3 normal = guides.normal.load(i);
-    const float l = luma[i];
-    const float inv_sigma_l = Arith::recip(sigma_luma * deviation[i] + epsilon);
+    const WaveletCentre p{depth, guides.normal.load(i), luma[i], inv_sigma_luma(i)};
     const int r = kernel_size / 2;
     const float k0 = binomial_weight(kernel_size, 0);
     float weight = k0 * k0;  // the centre: W = 1
@@ -49,14 +73,9 @@ struct WaveletIteration {
         const int xq = x + dx * step, yq = y + dy * step;
         if (!guides.inside(xq, yq)) continue;
         const int j = guides.index(xq, yq);
-        const float e_z = Arith::abs(depth - guides.depth[j]) * inv_sigma_depth;
-        const float e_l = Arith::abs(l - luma[j]) * inv_sigma_l;
-        // NaN guide data drops the term (max_f) or zeroes the weight (the normal term).
-        const float w_n = normal_power(normal_cosine<Arith>(normal, guides.normal.load(j)));
-        const float w =
-            Arith::positive_part(Arith::exp_neg_sum(Arith::max(e_l, 0.f), Arith::max(e_z, 0.f)) *
-                                 w_n) *
-            (binomial_weight(kernel_size, dx) * binomial_weight(kernel_size, dy));
+        const float w = wavelet_weight<Arith>(p, guides.depth[j], guides.normal.load(j), luma[j],
+                                              inv_sigma_depth, normal_power) *
+                        (binomial_weight(kernel_size, dx) * binomial_weight(kernel_size, dy));
         weight = weight + w;
         sum = Arith::mad(in.load(j), w, sum);
       }
