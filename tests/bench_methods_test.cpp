@@ -1,6 +1,7 @@
-// svgf-bench runs any project method through make_denoiser: a wavelet run's stage timings carry
-// the method's own stage names and no invented costs, and its JSON reads back through the
-// results model into the chart points and the summary.
+// svgf-bench runs any project method through make_denoiser: a run's stage timings carry the
+// method's own stage names, costs only where the cost model counts the stage (SVGF's stages, the
+// other methods' filter stage), and its JSON reads back through the results model into the
+// chart points, the summary and the targets.
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
@@ -30,25 +31,66 @@ TimingOptions quick() {
   return t;
 }
 
-}  // namespace
-
-TEST_CASE("a wavelet run is timed by the method's own stages, without a cost model",
-          "[bench][wavelet]") {
-  const RunConfig c = wavelet_config(Backend::Cpu, Mode::Exact, 3, 2);
-  const json e = time_run(c, fixture(), quick(), Ceilings{});
+// Only `costed` has bytes, operations, a floor and a per-tap cost; no stage has a made-up count,
+// and without every stage counted there is no frame floor.
+void require_costed_stage_only(const json& e, const RunConfig& c, const std::string& costed) {
   std::vector<std::string> names;
   for (const json& s : e["stages"]) {
-    names.push_back(s["stage"].get<std::string>());
+    const std::string name = s["stage"].get<std::string>();
+    names.push_back(name);
     CHECK(s["ms"]["median"].get<double>() > 0);
-    CHECK_FALSE(s.contains("bytes_read_per_px"));  // no cost model: n/a, not a made-up count
-    CHECK_FALSE(s.contains("floor"));
+    CHECK(s.contains("bytes_read_per_px") == (name == costed));
+    CHECK(s.contains("floor") == (name == costed));
+    CHECK(s.contains("per_tap") == (name == costed));
   }
   CHECK(names == make_denoiser(c.denoiser)->stages());
   CHECK_FALSE(e.contains("floor"));
-  CHECK(e["cost_model"] == "none");
+  CHECK(e["cost_model"] == "bench/stage_cost.cpp, stage " + costed + " only");
+}
+
+// The stage named `name` of a timing entry.
+const json& stage_of(const json& e, const std::string& name) {
+  for (const json& s : e["stages"])
+    if (s["stage"] == name) return s;
+  FAIL("no stage " << name);
+  static const json none;
+  return none;
+}
+
+}  // namespace
+
+TEST_CASE("a wavelet run is timed by the method's own stages, its a-trous passes costed",
+          "[bench][wavelet]") {
+  const RunConfig c = wavelet_config(Backend::Cpu, Mode::Exact, 3, 2);
+  const json e = time_run(c, fixture(), quick(), Ceilings{10.0, 1e10, "test"});
+  require_costed_stage_only(e, c, "atrous");
   CHECK(e["frames"] == 2);
   CHECK(e["config"]["kernel_size"] == 3);
   CHECK(e["key"] == "wavelet cpu exact it4 k3");
+  const double surface = e["input"]["surface_fraction"].get<double>();
+  CHECK(stage_of(e, "atrous")["taps_per_px"].get<double>() == Approx(4 * 8 * surface));
+}
+
+TEST_CASE("a JBF run costs its filter stage a tap", "[bench][jbf]") {
+  for (int levels : {0, 2}) {
+    RunConfig c = jbf_config(Backend::Cpu, Mode::Exact, levels, 2);
+    c.denoiser.jbf.radius = 2;  // a quick full window
+    CAPTURE(c.key());
+    const json e = time_run(c, fixture(), quick(), Ceilings{10.0, 1e10, "test"});
+    const std::string stage = levels ? "atrous" : "filter";
+    require_costed_stage_only(e, c, stage);
+    const json& s = stage_of(e, stage);
+    const double pixels = e["input"]["pixels"].get<double>();
+    const double taps = s["taps_per_px"].get<double>();
+    CHECK(taps == Approx(24 * std::max(levels, 1) * e["input"]["surface_fraction"].get<double>()));
+    // A tap's time is the stage's over the frame's taps; the float-rate share is the counted
+    // operations' rate over the ceiling.
+    const double ms = s["ms"]["median"].get<double>();
+    CHECK(s["per_tap"]["ns"].get<double>() == Approx(ms * 1e6 / (taps * pixels)));
+    CHECK(s["per_tap"]["ops"].get<double>() * taps == Approx(s["ops_per_px"].get<double>()));
+    CHECK(s["pct_of_ops"].get<double>() ==
+          Approx(100 * s["ops_per_px"].get<double>() * pixels / (ms * 1e-3) / 1e10));
+  }
 }
 
 TEST_CASE("SVGF keeps its cost model and floor", "[bench][svgf]") {
