@@ -3,13 +3,17 @@
 // other methods' filter stage), and its JSON reads back through the results model into the
 // chart points, the summary and the targets.
 #include <catch2/catch.hpp>
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <iterator>
 #include <fstream>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "bench/chart_points.h"
+#include "bench/chart_tables.h"
 #include "bench/results.h"
 #include "bench/runner.h"
 #include "bench/summary.h"
@@ -147,10 +151,108 @@ TEST_CASE("a wavelet suite entry reads back through the results model", "[bench]
   CHECK(pts[0].pareto_psnr);
   const std::string md = summary_markdown(r, pts, {});
   CHECK_THAT(md, Catch::Contains("Wavelet kernel sizes"));
-  CHECK_THAT(md, Catch::Contains("| 5x5 |"));
+  CHECK_THAT(md, Catch::Contains("| 5x5 wavelet, 4 passes |"));
   CHECK_THAT(md, Catch::Contains("**wavelet cpu exact it4 k5 t2**"));
   CHECK_THAT(md, Catch::Contains("| atrous |"));
   CHECK_THAT(md, Catch::Contains("n/a"));
+}
+
+TEST_CASE("every method and variant has its chart series", "[bench]") {
+  auto series = [](const std::string& method, const std::string& backend, const std::string& mode) {
+    return series_of({{"config", {{"method", method}, {"backend", backend}, {"mode", mode}}}});
+  };
+  CHECK(series("svgf", "cpu", "exact") == "cpu_exact");
+  CHECK(series("svgf", "cuda", "fast") == "cuda_fast");
+  CHECK(series("wavelet", "cuda", "exact") == "cuda_exact_wavelet");
+  CHECK(series("gaussian", "cpu", "exact") == "cpu_gaussian");
+  CHECK(series("jbf", "cuda", "fast") == "cuda_fast_jbf");
+  CHECK(series("jbf-atrous", "cpu", "exact") == "cpu_jbf");
+  CHECK(series("cv-nlmeans", "cpu", "opencv") == "baselines");
+  for (const std::string& s :
+       {series("gaussian", "cuda", "fast"), series("jbf-atrous", "cuda", "exact")})
+    CHECK(std::find(std::begin(kSeries), std::end(kSeries), s) != std::end(kSeries));
+  CHECK(jbf_config(Backend::Cpu, Mode::Exact, 0, 0).key() == kJbfCpu);
+  CHECK(jbf_config(Backend::Cpu, Mode::Exact, 4, 0).key() == kJbfAtrousCpu);
+}
+
+TEST_CASE("JBF and kernel-size study entries read back into the charts, the study and the summary",
+          "[bench][jbf]") {
+  const FrameSet f = fixture();
+  // (section, configuration): the JBF's a-trous form; the study's wavelet, Gaussian and dense
+  // JBF (small radii, so the test stays quick).
+  RunConfig dense = jbf_config(Backend::Cpu, Mode::Exact, 0, 2);
+  dense.denoiser.jbf.radius = 2;
+  dense.denoiser.jbf.alpha = 1.f;
+  const std::pair<std::string, RunConfig> runs[] = {
+      {"jbf", jbf_config(Backend::Cpu, Mode::Exact, 2, 2)},
+      {"wavelet", wavelet_config(Backend::Cpu, Mode::Exact, 3, 2)},
+      {"wavelet", gaussian_config(Backend::Cpu, Mode::Exact, 4.f / 3.f, 4, 2)},
+      {"wavelet", dense}};
+  json timings = json::array(), quality = json::array();
+  for (const auto& [section, c] : runs) {
+    json t = time_run(c, f, quick(), Ceilings{10.0, 1e10, "test"});
+    t["group"] = section;
+    timings.push_back(t);
+    json q = quality_run(c, f);
+    q["group"] = "quality";
+    quality.push_back(q);
+  }
+  json elsewhere = timings[0];  // the same configuration at another size: not a chart point
+  elsewhere["input"]["width"] = 256;
+  timings.push_back(elsewhere);
+  const json doc = {{"suite", "cpu"},
+                    {"chart_size", size_of(timings[0])},
+                    {"host", {{"cpu_model", "test"}, {"hardware_threads", 2}}},
+                    {"ceilings", json::object()},
+                    {"sections", json::object()},
+                    {"timings", timings},
+                    {"quality", quality}};
+  const fs::path dir = fs::temp_directory_path() / "svgf_bench_jbf_test";
+  fs::create_directories(dir);
+  std::ofstream(dir / "cpu.json") << doc.dump();
+  const Results r = load_results(dir.string());
+
+  const std::vector<Point> pts = chart_points(r);
+  std::vector<std::string> series;
+  for (const Point& p : pts) series.push_back(p.series);
+  // Grouped in kSeries order; the JBF's a-trous form and the dense JBF are one series.
+  CHECK(series ==
+        std::vector<std::string>{"cpu_wavelet", "cpu_gaussian", "cpu_jbf", "cpu_jbf"});
+  for (const Point& p : pts) CHECK(std::isfinite(p.q.psnr));
+
+  const KernelStudy study = kernel_study(r);
+  REQUIRE(study.rows.size() == 3);
+  CHECK(study.rows[0].name == "3x3 wavelet, 4 passes");
+  REQUIRE(study.find(StudyRow::Gaussian));
+  CHECK(study.find(StudyRow::Gaussian)->name == "9x9 Gaussian, sigma 1.33 (separable)");
+  REQUIRE(study.find(StudyRow::Dense));
+  CHECK(study.find(StudyRow::Dense)->name == "5x5 JBF (dense, no history)");
+  CHECK(study.rows[0].ms[0] == median_ms(timings[1]));
+  CHECK(std::isnan(study.rows[0].ms[2]));  // no GPU results
+
+  const std::string md = summary_markdown(r, pts, {});
+  CHECK_THAT(md, Catch::Contains("× Gaussian | Δ dB | × dense JBF | Δ dB |"));
+  CHECK_THAT(md, Catch::Contains("## Cost a tap"));
+  CHECK_THAT(md, Catch::Contains("| jbf-atrous cpu exact l2 t2 | " + size_of(timings[0]) +
+                                 " | atrous |"));
+  CHECK_THAT(md, Catch::Contains("**jbf-atrous cpu exact l2 t2**"));
+
+  write_points(dir, pts);
+  write_kernel_study(dir, r);
+  auto data_lines = [&](const std::string& name) {
+    std::ifstream in(dir / name);
+    REQUIRE(in);
+    int n = 0;
+    for (std::string line; std::getline(in, line);) n += !line.empty() && line[0] != '#';
+    return n;
+  };
+  CHECK(data_lines("points_cpu_jbf.dat") == 2);
+  CHECK(data_lines("points_cpu_gaussian.dat") == 1);
+  CHECK(data_lines("kernel_study_cpu_wavelet.dat") == 1);
+  CHECK(data_lines("kernel_study_cpu_gaussian.dat") == 1);
+  CHECK(data_lines("kernel_study_cpu_dense.dat") == 1);
+  CHECK(data_lines("kernel_study_cuda_fast_wavelet.dat") == 0);
+  fs::remove_all(dir);
 }
 
 TEST_CASE("OpenCV baseline entries from before the cv- names read under them", "[bench]") {
