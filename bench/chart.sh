@@ -38,6 +38,7 @@ while read -r scene; do
 done < "$data/scenes.txt"
 gnuplot -e "data='$data'; out_pixels='$out/scaling_pixels.png'; out_iterations='$out/scaling_iterations.png'" \
   "$here/chart/scaling.gp"
+gnuplot -e "data='$data'; out='$out/kernel_sizes.png'; subtitle='$subtitle'" "$here/chart/kernel_sizes.gp"
 # Nsight Compute reports of the GPU run (bench/gpu_run.sh), summarized, when present.
 ncu_reports=$(ls "$results"/raw/ncu_*.csv 2>/dev/null || true)
 if [ -n "$ncu_reports" ] && command -v python3 >/dev/null; then

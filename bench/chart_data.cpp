@@ -24,6 +24,7 @@ int write_chart_data(const std::string& results_dir, const std::string& out_dir,
   write_points(out_dir, pts);
   write_error_curves(out_dir, r);
   write_scaling(out_dir, r);
+  write_kernel_study(out_dir, r);
   write_text_file(fs::path(out_dir) / "summary.md", summary_markdown(r, pts, targets));
   std::printf("chart-data: %zu suite(s), %zu chart points -> %s\n", r.suites.size(), pts.size(),
               out_dir.c_str());

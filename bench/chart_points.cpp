@@ -1,6 +1,9 @@
 #include "bench/chart_points.h"
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
+#include <sstream>
 
 namespace svgf::bench {
 namespace {
@@ -41,43 +44,72 @@ Quality aggregate(const std::map<std::string, json>& by_scene) {
   return q;
 }
 
+std::string series_of(const json& e) {
+  const json& c = e["config"];
+  const std::string mode = c.value("mode", "");
+  if (mode == "opencv") return "baselines";
+  const std::string plat = c.value("backend", "") == "cuda" ? "cuda_" + mode : "cpu";
+  const std::string method = c.value("method", "");
+  if (method == "svgf") return plat == "cpu" ? "cpu_exact" : plat;
+  return plat + "_" + (method == "jbf-atrous" ? "jbf" : method);
+}
+
 std::string platform(const Point& p) { return p.series.rfind("cuda", 0) == 0 ? "gpu" : "cpu"; }
+
+namespace {
+
+// Quality of configuration `key` over the scenes; a CUDA exact configuration measured only on
+// the CPU has the CPU's (exact mode is bitwise equal on both backends).
+Quality quality_of(const Results& r, const json& e) {
+  const std::string key = e["key"].get<std::string>();
+  auto by_scene = r.quality(key);
+  const json& c = e["config"];
+  if (by_scene.empty() && c.value("backend", "") == "cuda" && c.value("mode", "") == "exact") {
+    std::string k = key;
+    k.replace(k.find("cuda"), 4, "cpu");
+    by_scene = r.quality(k);
+  }
+  return aggregate(by_scene);
+}
+
+// The entries of a section at its suite's chart size (results from before the suites recorded
+// it have every chart entry at that size).
+std::vector<const json*> at_chart_size(const Results& r, const std::string& suite,
+                                       const std::string& section) {
+  std::vector<const json*> v;
+  const json* doc = r.suite(suite);
+  const std::string size = doc ? doc->value("chart_size", "") : "";
+  for (const json* e : r.timings(suite, section))
+    if (size.empty() || size_of(*e) == size) v.push_back(e);
+  return v;
+}
+
+size_t series_index(const std::string& series) {
+  size_t i = 0;
+  while (i < std::size(kSeries) && series != kSeries[i]) ++i;
+  return i;
+}
+
+}  // namespace
 
 std::vector<Point> chart_points(const Results& r) {
   std::vector<Point> pts;
-  // `mode`: only entries of this mode (exact, fast), or any when empty.
-  auto add = [&](const std::string& series, const std::string& suite, const std::string& group,
-                 const std::string& mode, const std::string& quality_fallback_from,
-                 const std::string& quality_fallback_to) {
-    for (const json* e : r.timings(suite, group)) {
-      if (!mode.empty() && (*e)["config"].value("mode", "") != mode) continue;
-      Point p;
-      p.series = series;
-      p.key = (*e)["key"].get<std::string>();
-      p.label = short_label(p.key);
-      p.time_ms = median_ms(*e);
-      p.p95_ms = p95_ms(*e);
-      p.size = size_of(*e);
-      auto by_scene = r.quality(p.key);
-      if (by_scene.empty() && !quality_fallback_from.empty()) {
-        // Exact mode is bitwise equal on both backends: its quality is the CPU's.
-        std::string k = p.key;
-        const size_t at = k.find(quality_fallback_from);
-        if (at != std::string::npos)
-          k.replace(at, quality_fallback_from.size(), quality_fallback_to);
-        by_scene = r.quality(k);
+  for (const char* suite : {"cpu", "gpu"})
+    for (const char* section : {"chart", "baselines", "wavelet", "jbf"})
+      for (const json* e : at_chart_size(r, suite, section)) {
+        Point p;
+        p.series = series_of(*e);
+        p.key = (*e)["key"].get<std::string>();
+        p.label = short_label(p.key);
+        p.time_ms = median_ms(*e);
+        p.p95_ms = p95_ms(*e);
+        p.size = size_of(*e);
+        p.q = quality_of(r, *e);
+        pts.push_back(p);
       }
-      p.q = aggregate(by_scene);
-      pts.push_back(p);
-    }
-  };
-  add("cpu_exact", "cpu", "chart", "", "", "");
-  add("cuda_exact", "gpu", "chart", "exact", "cuda", "cpu");
-  add("cuda_fast", "gpu", "chart", "fast", "", "");
-  add("baselines", "cpu", "baselines", "", "", "");
-  add("cpu_wavelet", "cpu", "wavelet", "", "", "");
-  add("cuda_exact_wavelet", "gpu", "wavelet", "exact", "cuda", "cpu");
-  add("cuda_fast_wavelet", "gpu", "wavelet", "fast", "", "");
+  std::stable_sort(pts.begin(), pts.end(), [](const Point& a, const Point& b) {
+    return series_index(a.series) < series_index(b.series);
+  });
   // Pareto fronts within each platform: what a GPU user, or a CPU user, can pick from.
   for (Point& p : pts) {
     if (!std::isfinite(p.time_ms)) continue;
@@ -95,6 +127,58 @@ std::vector<Point> chart_points(const Results& r) {
     p.pareto_flip = std::isfinite(p.q.flip) && !dominated_flip;
   }
   return pts;
+}
+
+const StudyRow* KernelStudy::find(StudyRow::Kind kind) const {
+  for (const StudyRow& row : rows)
+    if (row.kind == kind) return &row;
+  return nullptr;
+}
+
+KernelStudy kernel_study(const Results& r) {
+  std::map<std::pair<int, int>, StudyRow> rows;  // (kind, kernel size) -> row
+  KernelStudy study;
+  for (const char* suite : {"cpu", "gpu"})
+    for (const json* e : at_chart_size(r, suite, "wavelet")) {
+      const json& c = (*e)["config"];
+      const std::string method = c.value("method", "");
+      std::ostringstream name;
+      StudyRow::Kind kind;
+      int kernel;
+      if (method == "wavelet") {
+        kind = StudyRow::Wavelet;
+        kernel = c["kernel_size"].get<int>();
+        name << kernel << "x" << kernel << " wavelet, " << c["iterations"].get<int>() << " passes";
+      } else if (method == "gaussian") {
+        kind = StudyRow::Gaussian;
+        kernel = 2 * c["radius"].get<int>() + 1;
+        name.precision(3);
+        name << kernel << "x" << kernel << " Gaussian, sigma " << c["sigma"].get<double>()
+             << " (separable)";
+      } else if (method == "jbf") {
+        kind = StudyRow::Dense;
+        kernel = 2 * c["radius"].get<int>() + 1;
+        name << kernel << "x" << kernel << " JBF (dense, no history)";
+      } else {
+        continue;
+      }
+      StudyRow& row = rows[{kind, kernel}];
+      row.kind = kind;
+      row.name = name.str();
+      const bool fast = c.value("mode", "") == "fast";
+      const int col = std::string(suite) == "cpu" ? 0 : (fast ? 2 : 1);
+      row.ms[col] = median_ms(*e);
+      const Quality q = quality_of(r, *e);
+      if (fast)
+        row.fast = q;
+      else if (q.scenes > 0)
+        row.exact = q;
+      const std::string at = std::string(suite) + " " + size_of(*e);
+      if (study.sizes.find(at) == std::string::npos)
+        study.sizes += (study.sizes.empty() ? "" : ", ") + at;
+    }
+  for (auto& [k, row] : rows) study.rows.push_back(row);
+  return study;
 }
 
 }  // namespace svgf::bench

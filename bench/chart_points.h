@@ -31,14 +31,36 @@ struct Point {
 };
 
 // The series, in the order chart_points gives them: SVGF's (the chart sections), the OpenCV
-// baselines, the wavelet filter's kernel sizes (the wavelet sections).
-inline const char* const kSeries[] = {"cpu_exact",        "cuda_exact",  "cuda_fast",
-                                      "baselines",        "cpu_wavelet", "cuda_exact_wavelet",
-                                      "cuda_fast_wavelet"};
+// baselines, then each other method by platform and mode: the wavelet filter's kernel sizes, the
+// Gaussian and the JBF (jbf and jbf-atrous), from the wavelet and jbf sections.
+inline const char* const kSeries[] = {
+    "cpu_exact",    "cuda_exact",          "cuda_fast",         "baselines",
+    "cpu_wavelet",  "cuda_exact_wavelet",  "cuda_fast_wavelet", "cpu_gaussian",
+    "cuda_exact_gaussian", "cuda_fast_gaussian", "cpu_jbf", "cuda_exact_jbf",
+    "cuda_fast_jbf"};
 
+// The series of a timing entry: by its method, backend and mode.
+std::string series_of(const json& entry);
 // "gpu" for the CUDA series, "cpu" for the CPU ones and the OpenCV baselines.
 std::string platform(const Point& p);
 
+// A point for every configuration of the chart, baselines, wavelet and jbf sections timed at
+// its suite's chart size, grouped by series.
 std::vector<Point> chart_points(const Results& r);
+
+// The CIS 565 kernel-size study (the wavelet sections): the wavelet filter at each kernel size
+// and its 9x9 comparisons, with their times per platform and quality.
+struct StudyRow {
+  enum Kind { Wavelet, Gaussian, Dense } kind = Wavelet;
+  std::string name;                 // "5x5 wavelet", "9x9 Gaussian (separable, sigma 1.33)"
+  double ms[3] = {NAN, NAN, NAN};  // CPU (all threads), CUDA exact, CUDA fast
+  Quality exact, fast;
+};
+struct KernelStudy {
+  std::vector<StudyRow> rows;  // wavelet rows by kernel size, then the Gaussian, the dense filter
+  std::string sizes;           // where the times were taken: "cpu 1280x720, gpu 1280x720"
+  const StudyRow* find(StudyRow::Kind kind) const;  // the first row of `kind`, or nullptr
+};
+KernelStudy kernel_study(const Results& r);
 
 }  // namespace svgf::bench

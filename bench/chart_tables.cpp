@@ -56,7 +56,8 @@ void write_points(const fs::path& out, const std::vector<Point>& pts) {
 
 // Per-frame curves of each fixture scene: one file per scene and metric, one column per config.
 void write_error_curves(const fs::path& out, const Results& r) {
-  std::vector<std::string> keys = {"noisy input", kDefaultCpu, kDefaultFast, kWaveletCpu};
+  std::vector<std::string> keys = {"noisy input", kDefaultCpu,   kDefaultFast,
+                                   kWaveletCpu,   kJbfCpu,       kJbfAtrousCpu};
   for (const json* e : r.timings("cpu", "baselines")) keys.push_back((*e)["key"]);
   std::map<std::string, std::map<std::string, json>> by_key;  // key -> scene -> entry
   std::vector<std::string> scenes;
@@ -142,6 +143,25 @@ void write_scaling(const fs::path& out, const Results& r) {
     ((*e)["config"]["mode"] == "fast" ? it_fast : it_exact).push_back(e);
   iterations("scaling_iterations_cuda_exact.dat", it_exact);
   iterations("scaling_iterations_cuda_fast.dat", it_fast);
+}
+
+void write_kernel_study(const fs::path& out, const Results& r) {
+  const KernelStudy study = kernel_study(r);
+  const char* const platforms[] = {"cpu", "cuda_exact", "cuda_fast"};
+  const std::pair<StudyRow::Kind, const char*> filters[] = {
+      {StudyRow::Wavelet, "wavelet"}, {StudyRow::Gaussian, "gaussian"}, {StudyRow::Dense, "dense"}};
+  for (int col = 0; col < 3; ++col)
+    for (const auto& [kind, filter] : filters) {
+      std::ostringstream s;
+      s << "# time_ms psnr_db flip label\n";
+      for (const StudyRow& row : study.rows) {
+        const Quality& q = col == 2 ? row.fast : row.exact;
+        if (row.kind == kind && std::isfinite(row.ms[col]) && std::isfinite(q.psnr))
+          s << row.ms[col] << ' ' << q.psnr << ' ' << q.flip << " \"" << row.name << "\"\n";
+      }
+      write_text_file(out / ("kernel_study_" + std::string(platforms[col]) + "_" + filter + ".dat"),
+                      s.str());
+    }
 }
 
 }  // namespace svgf::bench

@@ -18,5 +18,9 @@ void write_points(const std::filesystem::path& out, const std::vector<Point>& pt
 void write_error_curves(const std::filesystem::path& out, const Results& r);
 // scaling_pixels_*.dat and scaling_iterations_*.dat.
 void write_scaling(const std::filesystem::path& out, const Results& r);
+// kernel_study_<platform>_<filter>.dat: the CIS 565 kernel-size study's quality against time,
+// platform cpu, cuda_exact or cuda_fast, filter wavelet (one row a kernel size), gaussian or
+// dense (its 9x9 comparisons).
+void write_kernel_study(const std::filesystem::path& out, const Results& r);
 
 }  // namespace svgf::bench

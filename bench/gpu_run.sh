@@ -13,7 +13,8 @@ mkdir -p "$out"
 { nvidia-smi --query-gpu=name,driver_version,pci.bus_id,clocks.max.sm,clocks.max.mem,memory.total,power.limit \
     --format=csv; nvidia-smi; } > "$out/nvidia-smi.txt" 2>&1
 
-# The suite: sizes, iterations, chart configurations, quality on the fixtures.
+# The suite: sizes, iterations, chart configurations, the wavelet study, the JBF, quality on the
+# fixtures.
 # Frames are rendered in memory (--cache ""): writing 4K EXR files would cost more than rendering.
 timeout 400 $bench suite gpu --out "$out" --cache "" > "$out/gpu-suite.log" 2>&1
 echo "suite exit status $?"
@@ -47,7 +48,8 @@ for t in d.get("timings", []):
     if "error" in t:
         print("ERROR", t["label"], t["error"]); continue
     f = t["frame_ms"]["filter"]; i = t["input"]
+    floor = t.get("floor", {}).get("floor_ms", float("nan"))  # SVGF only: other methods have no frame floor
     print(f'{t["group"]:10} {t["label"]:28} {i["width"]}x{i["height"]:<5} median {f["median"]:.4f} '
-          f'p95 {f["p95"]:.4f} floor {t["floor"]["floor_ms"]:.4f} mem {t.get("peak_device_bytes", 0) / 2**20:.0f} MiB')
+          f'p95 {f["p95"]:.4f} floor {floor:.4f} mem {t.get("peak_device_bytes", 0) / 2**20:.0f} MiB')
 print("quality entries", len(d.get("quality", [])), "errors", sum("error" in q for q in d.get("quality", [])))
 EOF

@@ -17,6 +17,8 @@ inline const char* const kDefaultExact = "svgf cuda exact it4 tap1";
 inline const char* const kDefaultFast = "svgf cuda fast it4 tap1";
 inline const char* const kWaveletCpu = "wavelet cpu exact it4 k5";
 inline const char* const kWaveletFast = "wavelet cuda fast it4 k5";
+inline const char* const kJbfCpu = "jbf cpu exact r16";
+inline const char* const kJbfAtrousCpu = "jbf-atrous cpu exact l4";
 
 struct Results {
   std::map<std::string, json> suites;  // by suite name ("cpu", "gpu")

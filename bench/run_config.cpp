@@ -129,22 +129,41 @@ RunConfig run_config(const std::string& method) {
   return c;
 }
 
-RunConfig svgf_config(Backend backend, Mode mode, int iterations, int feedback_tap, int threads) {
-  RunConfig c = run_config("svgf");
+namespace {
+
+RunConfig project_config(const std::string& method, Backend backend, Mode mode, int threads) {
+  RunConfig c = run_config(method);
   c.denoiser.backend = backend;
   c.denoiser.mode = mode;
   c.denoiser.threads = threads;
+  return c;
+}
+
+}  // namespace
+
+RunConfig svgf_config(Backend backend, Mode mode, int iterations, int feedback_tap, int threads) {
+  RunConfig c = project_config("svgf", backend, mode, threads);
   c.denoiser.svgf.iterations = iterations;
   c.denoiser.svgf.feedback_tap = feedback_tap;
   return c;
 }
 
 RunConfig wavelet_config(Backend backend, Mode mode, int kernel_size, int threads) {
-  RunConfig c = run_config("wavelet");
-  c.denoiser.backend = backend;
-  c.denoiser.mode = mode;
-  c.denoiser.threads = threads;
+  RunConfig c = project_config("wavelet", backend, mode, threads);
   c.denoiser.wavelet.kernel_size = kernel_size;
+  return c;
+}
+
+RunConfig jbf_config(Backend backend, Mode mode, int levels, int threads) {
+  RunConfig c = project_config(levels > 0 ? "jbf-atrous" : "jbf", backend, mode, threads);
+  c.denoiser.jbf.levels = levels;
+  return c;
+}
+
+RunConfig gaussian_config(Backend backend, Mode mode, float sigma, int radius, int threads) {
+  RunConfig c = project_config("gaussian", backend, mode, threads);
+  c.denoiser.gaussian.sigma = sigma;
+  c.denoiser.gaussian.radius = radius;
   return c;
 }
 

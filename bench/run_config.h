@@ -11,7 +11,7 @@
 namespace svgf::bench {
 
 struct RunConfig {
-  // A project method (parse_method's names: svgf, gaussian, wavelet), an OpenCV baseline
+  // A project method (parse_method's names: svgf, gaussian, wavelet, jbf, jbf-atrous), an OpenCV baseline
   // ("cv-" names) or "noisy" (the input, quality only).
   std::string method = "svgf";
   Baseline baseline;       // when method is a baseline
@@ -31,6 +31,11 @@ RunConfig run_config(const std::string& method);
 RunConfig svgf_config(Backend backend, Mode mode, int iterations, int feedback_tap, int threads);
 // The CIS 565 wavelet filter at its defaults but for the kernel size (3, 5, 7, 9).
 RunConfig wavelet_config(Backend backend, Mode mode, int kernel_size, int threads);
+// The JBF at its defaults: the full window (levels 0, method jbf) or the a-trous form with
+// `levels` levels (method jbf-atrous).
+RunConfig jbf_config(Backend backend, Mode mode, int levels, int threads);
+// The project's Gaussian blur with this sigma and radius (0: ceil(3 sigma)).
+RunConfig gaussian_config(Backend backend, Mode mode, float sigma, int radius, int threads);
 
 RunConfig baseline_config(const Baseline& b, int threads);
 

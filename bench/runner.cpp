@@ -39,9 +39,9 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
   if (c.method == "noisy") throw std::invalid_argument("the noisy input has no time to measure");
   if (fs.frames.empty()) throw std::invalid_argument("time_run: no frames");
   const bool project = c.project(), cuda = c.cuda();
-  // Bytes and operations are counted for SVGF only (bench/stage_cost.h); other methods' stages
-  // are timed but have no floor.
-  const bool costed = project && c.denoiser.method == Method::Svgf;
+  // Bytes and operations are counted for every SVGF stage and for the other methods' filter
+  // stages (bench/stage_cost.h); a frame floor needs them all.
+  const bool frame_costed = project && frame_is_costed(c.denoiser.method);
   const double pixels = static_cast<double>(fs.width) * fs.height;
   const bool emission = !fs.frames.front().emission.empty();
   const double surface = fs.surface_fraction();
@@ -128,17 +128,16 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
   j["ceilings"] = {{"copy_gbs", ceilings.copy_gbs},
                    {"ops_per_s", ceilings.ops_per_s},
                    {"copy_what", ceilings.copy_what}};
-  j["cost_model"] = costed ? "bench/stage_cost.cpp" : "none";
 
   json stages = json::array();
+  std::vector<std::string> costed_stages;
   double floor_total = 0, bytes_total = 0, ops_total = 0;
   for (size_t si = 0; si < stage_names.size(); ++si) {
     const std::string& name = stage_names[si];
     const Summary st = summarize(stage_ms[si]);
-    const std::optional<Stage> counted = costed ? svgf_cost_stage(name) : std::nullopt;
-    const StageCost cost =
-        counted ? stage_cost(c.denoiser.mode, *counted, c.denoiser.svgf, emission, surface)
-                : StageCost{};
+    const std::optional<StageCost> counted =
+        project ? method_stage_cost(c.denoiser, name, emission, surface) : std::nullopt;
+    const StageCost cost = counted.value_or(StageCost{});
     if (st.max <= 0 && cost.bytes() <= 0) continue;  // not run by this backend/mode
     json e;
     e["stage"] = name;
@@ -147,6 +146,7 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
     e["host_link"] = is_transfer_stage(name);
     stages.push_back(e);
     if (!counted) continue;  // no cost model: no bytes, operations or floor ("n/a")
+    costed_stages.push_back(name);
     json& ec = stages.back();
     ec["bytes_read_per_px"] = cost.read;
     ec["bytes_written_per_px"] = cost.written;
@@ -161,6 +161,17 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
     const double ops_ms = ceilings.ops_per_s > 0 ? cost.ops * pixels / ceilings.ops_per_s * 1e3 : 0;
     const double floor = std::max(bytes_ms, ops_ms);
     ec["pct_of_copy_bw"] = ceilings.copy_gbs > 0 ? 100.0 * gbs / ceilings.copy_gbs : 0.0;
+    // The counted operations per second against the measured float rate.
+    const double ops_per_s = st.median > 0 ? cost.ops * pixels / (st.median * 1e-3) : 0.0;
+    ec["pct_of_ops"] = ceilings.ops_per_s > 0 ? 100.0 * ops_per_s / ceilings.ops_per_s : 0.0;
+    if (cost.taps > 0) {  // a filter's neighbour taps: what one costs
+      const double taps = cost.taps * pixels;
+      ec["taps_per_px"] = cost.taps;
+      ec["per_tap"] = {{"ns", st.median * 1e6 / taps},
+                       {"taps_per_s", st.median > 0 ? taps / (st.median * 1e-3) : 0.0},
+                       {"ops", cost.ops / cost.taps},
+                       {"bytes", cost.bytes() / cost.taps}};
+    }
     ec["floor"] = {{"bytes_ms", bytes_ms},
                    {"ops_ms", ops_ms},
                    {"floor_ms", floor},
@@ -170,7 +181,16 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
     bytes_total += bytes;
     ops_total += cost.ops * pixels;
   }
-  if (costed) {
+  if (costed_stages.empty()) {
+    j["cost_model"] = "none";
+  } else if (frame_costed) {
+    j["cost_model"] = "bench/stage_cost.cpp";
+  } else {
+    std::string names;
+    for (const std::string& n : costed_stages) names += (names.empty() ? "" : ", ") + n;
+    j["cost_model"] = "bench/stage_cost.cpp, stage " + names + " only";
+  }
+  if (frame_costed) {
     const double bytes_ms =
         ceilings.copy_gbs > 0 ? bytes_total / (ceilings.copy_gbs * 1e9) * 1e3 : 0;
     const double ops_ms = ceilings.ops_per_s > 0 ? ops_total / ceilings.ops_per_s * 1e3 : 0;
@@ -305,6 +325,14 @@ void print_timing(const json& e, std::FILE* f) {
     std::fprintf(f, " %8s %8s %6s %8s %9s %7s", "n/a", "n/a", "", "n/a", "n/a", "n/a");
   std::fprintf(f, "\n  %-12s %9.3f %9.3f   (denoise() call, host clock)\n", "frame wall",
                fm["wall"]["median"].get<double>(), fm["wall"]["p95"].get<double>());
+  for (const json& s : e["stages"])
+    if (s.contains("per_tap"))
+      std::fprintf(f,
+                   "  %-12s %.0f taps/px: %.4f ns a tap, %.2f G taps/s, %.0f ops a tap, %.1f%% of "
+                   "the float ceiling\n",
+                   s["stage"].get<std::string>().c_str(), s["taps_per_px"].get<double>(),
+                   s["per_tap"]["ns"].get<double>(), s["per_tap"]["taps_per_s"].get<double>() / 1e9,
+                   s["per_tap"]["ops"].get<double>(), s["pct_of_ops"].get<double>());
   if (e.contains("peak_device_bytes"))
     std::fprintf(f, "  peak device memory %.1f MiB\n",
                  static_cast<double>(e["peak_device_bytes"].get<size_t>()) / (1 << 20));

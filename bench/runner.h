@@ -1,8 +1,8 @@
 #pragma once
 // One benchmark configuration run over a frame set: timing (per stage by the method's own stage
-// names and per frame, with the bandwidth and floor analysis where a cost model exists: SVGF's,
-// bench/stage_cost.h) or quality (per frame against the reference). Results are JSON objects;
-// docs/benchmarks.md describes their fields.
+// names and per frame, with the bandwidth, float-rate, per-tap and floor analysis where the cost
+// model counts the stage, bench/stage_cost.h) or quality (per frame against the reference).
+// Results are JSON objects; docs/benchmarks.md describes their fields.
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>

@@ -1,6 +1,7 @@
 // Bytes and operations per pixel of every SVGF stage, read off the functors in methods/svgf/:
 // exact mode (both backends) and the SvgfFast flavor (fast mode, methods/svgf/flavors.h), counted
-// by hand. tests/bench_stage_cost_test.cpp checks exact mode's plane counts (bytes) against the
+// by hand; and of the filter stage of the JBF (methods/jbf/) and of the wavelet filter
+// (methods/wavelet/), in both modes. tests/bench_stage_cost_test.cpp checks exact mode's plane counts (bytes) against the
 // kernels; the operation counts, and everything of fast mode, are not checked (see
 // stage_cost.h). Conventions (docs/benchmarks.md):
 //  - bytes: every plane the kernel reads, once, plus every plane it writes, once; 4 bytes a
@@ -13,17 +14,28 @@
 //    counted with FMA contraction (a multiply-add is one op), as it is compiled.
 #include "bench/stage_cost.h"
 
+#include "core/normal_weight.h"
+#include "methods/jbf/denoiser.h"
+#include "methods/wavelet/denoiser.h"
+
 namespace svgf::bench {
 namespace {
 
 constexpr double kFloat = 4.0;
+// The 5x5 a-trous grid of SVGF and the JBF without its centre.
+constexpr int kGridTaps = 24;
+
+// det_exp_nonpositive (core/det_math.h): clamp 1, k = floor(x log2e + 1/2) 6, Cody-Waite r 4,
+// r^2 1, polynomial 10, y 3, two scale products 2.
+constexpr double kDetExp = 27;
+// FastArith's exp (core/arith.h): the scale by log2 e and ex2.approx.
+constexpr double kFastExp = 2;
 
 // --- exact mode (core/*.h) ----------------------------------------------------------------
 // edge_stopping_weight (edge_stopping.h) with phi_normal = 128: dot 5, max 1, seven squarings 7;
-// depth and luminance terms |a-b|/phi 3 + 3; two clamps and the sum 4; det_exp_nonpositive
-// (det_math.h: clamp 1, k = floor(x log2e + 1/2) 6, Cody-Waite r 4, r^2 1, polynomial 10,
-// y 3, two scale products 2) 27; times the normal weight and the > 0 select 2.
-constexpr double kExactEdgeWeight = 13 + 6 + 4 + 27 + 2;  // 52
+// depth and luminance terms |a-b|/phi 3 + 3; two clamps and the sum 4; det_exp_nonpositive 27;
+// times the normal weight and the > 0 select 2.
+constexpr double kExactEdgeWeight = 13 + 6 + 4 + kDetExp + 2;  // 52
 constexpr double kLuminance = 5;                          // 3 mul, 2 add
 // One a-trous tap: the tap's luminance, the weight, tap_distance (3 + sqrt) and phi_z * d 5,
 // the B3 product and times it 2, accumulation (weight 1, color 6, variance w*w*v + add 3) 10.
@@ -31,7 +43,7 @@ constexpr double kExactAtrousTap = kLuminance + kExactEdgeWeight + 5 + 2 + 10;  
 // Per pixel and iteration, outside the 24 taps: 3x3 variance prefilter 9 x 4 + division 37;
 // phi_l 4; phi_z 5; centre luminance 5; centre terms 5; final normalization 5.
 constexpr double kExactAtrousCentre = 37 + 4 + 5 + 5 + 5 + 5;  // 61
-constexpr double kExactAtrousIteration = 24 * kExactAtrousTap + kExactAtrousCentre;
+constexpr double kExactAtrousIteration = kGridTaps * kExactAtrousTap + kExactAtrousCentre;
 
 // reproject.h, four bilinear taps kept: position, range check, floors, fractions and the four
 // bilinear weights 22; per tap the consistency test (fwidth 3, tolerance 3, depth test 3,
@@ -58,7 +70,7 @@ constexpr double kFastAtrousTap = 3 + 3 + 1 + 7 + 3 + 3 + 1 + 2 + 1 + 1 + 1 + 1 
 // Outside the taps: 3x3 prefilter (9 FMA, 9 weight adds, divide 2) 20, phi_l and its reciprocal
 // 6, phi_z and its reciprocal 6, centre luminance 3, centre terms 5, final normalization 6.
 constexpr double kFastAtrousCentre = 20 + 6 + 6 + 3 + 5 + 6;  // 46
-constexpr double kFastAtrousIteration = 24 * kFastAtrousTap + kFastAtrousCentre;
+constexpr double kFastAtrousIteration = kGridTaps * kFastAtrousTap + kFastAtrousCentre;
 
 bool tap_in_range(const SvgfParams& p) {
   return p.feedback_tap >= 0 && p.feedback_tap < p.iterations;
@@ -100,6 +112,7 @@ StageCost exact_cost(Stage stage, const SvgfParams& p, bool emission, bool surfa
       c.read = p.iterations * (surface ? 10 : 5) * kFloat;
       c.written = p.iterations * 4 * kFloat;
       c.ops = surface ? p.iterations * kExactAtrousIteration : 0;
+      c.taps = surface ? p.iterations * kGridTaps : 0;
       c.planes =
           "per iteration R color + variance 4, depth 1, depth dx/dy 2, normal 3 (background: "
           "color + variance, depth); W color + variance 4";
@@ -153,6 +166,7 @@ StageCost fast_cost(Stage stage, const SvgfParams& p, bool emission, bool surfac
       c.written = ((p.iterations - 1) * 4 + 3 + (tap_in_range(p) ? 3 : 0)) * kFloat;
       c.ops =
           (surface ? p.iterations * kFastAtrousIteration : 0) + kRemodulate + (emission ? 3 : 0);
+      c.taps = surface ? p.iterations * kGridTaps : 0;
       c.planes =
           "per iteration R packed 4, packed guides 4, depth dx/dy 2 (background: packed, "
           "packed guides); W packed 4 (not the last); last R albedo 3 (+ emission 3), W output "
@@ -182,6 +196,82 @@ StageCost pixel_cost(Mode mode, Stage stage, const SvgfParams& p, bool emission,
                             : exact_cost(stage, p, emission, surface);
 }
 
+// A surface pixel's cost `a` and a background pixel's `b`, weighted by the surface fraction.
+StageCost blend(const StageCost& a, const StageCost& b, double surface_fraction) {
+  const double s = surface_fraction < 0 ? 0 : (surface_fraction > 1 ? 1 : surface_fraction);
+  StageCost c = a;
+  c.read = s * a.read + (1 - s) * b.read;
+  c.written = s * a.written + (1 - s) * b.written;
+  c.ops = s * a.ops + (1 - s) * b.ops;
+  c.taps = s * a.taps + (1 - s) * b.taps;
+  return c;
+}
+
+// --- the JBF (methods/jbf/weight.h, filter.h) -----------------------------------------------
+// One tap of the full window, exact mode, every tap on a surface (the steady state; a tap
+// without a surface stops after its depth test):
+//   depth test 1; the squared distance converted to float 1;
+//   jbf_guide_exponent 55:
+//     color: difference 3, dot 5, times its scale 1 (9);
+//     normal: dot 5, clamp to [-1, 1] 2, det_acos on its common branch (n_i . n_j > 1/2:
+//       compare 1, sqrt(0.5 - 0.5 x) 3, det_asin_small 12 (x^2 1, polynomial 8, x + x (z p) 3),
+//       times 2 1) 17, angle^2 times its scale 2 (26);
+//     plane: position difference 3, length (dot 5 + sqrt) 6, len > 0 1, dot 5, division 1,
+//       d^2 times its scale 2 (18);
+//     the sum of the three 2;
+//   jbf_weight: d2 times the coordinate scale plus the exponent 2, e >= 0 1, 0 - e 1, det_exp 27,
+//     the select 1 (32);
+//   accumulation: weight 1, color 3 mul + 3 add 6 (7).
+constexpr double kJbfExactTap = 1 + 1 + 55 + 32 + 7;  // 96
+// Fast mode (FastArith) changes the exponential and the color accumulation (3 FMA); the rest of
+// the weight is the same IEEE code (the CUDA files are built with -fmad=false).
+constexpr double kJbfFastTap = kJbfExactTap - kDetExp + kFastExp - 3;  // 68
+// The a-trous form multiplies each tap by its B3 weights: their product and times it, 2; and
+// weighs the centre by k0^2, 1 a pixel and pass.
+constexpr double kJbfB3Tap = 2;
+constexpr double kJbfB3Centre = 1;
+// Per pixel and pass, outside the taps: surface test 1, centre sum 3, the normalization (3
+// divisions exact; fast: one reciprocal and 3 products, 4).
+constexpr double kJbfExactCentre = 1 + 3 + 3;
+constexpr double kJbfFastCentre = 1 + 3 + 4;
+
+// --- the wavelet filter (methods/wavelet/atrous.h) ----------------------------------------------
+// One tap, exact mode: depth term |Z_p - Z_q| / sigma 3, luma term 3, normal_cosine (dot 5,
+// saturate 2) 7, the normal power's squarings m (log2 sigma_N; another sigma_N is det_pow, one
+// special function), the two max 2, exp_neg_sum ((0 - a) - b 2, det_exp 27) 29, times the normal
+// weight 1, positive_part 2, times the binomial product 2 (each weight of the 7 and 9 taps
+// kernels is a division too: + 2), accumulation 7.
+constexpr double kWaveletExactTap = 3 + 3 + 7 + 2 + 2 + kDetExp + 1 + 2 + 2 + 7;  // 56 + m
+// Fast: the dot 3 (mul + 2 FMA) with a free saturate, exp_neg_sum (add, scale, ex2) 3, no
+// positive_part, accumulation 1 + 3 FMA.
+constexpr double kWaveletFastTap = 3 + 3 + 3 + 2 + 3 + 1 + 2 + 4;  // 21 + m
+// Per pixel and pass: surface test 1, 1 / (sigma_L Dev + eps) 3, centre weight k0^2 1, centre
+// sum 3, the normalization 3 (exact) or 4 (fast).
+constexpr double kWaveletExactCentre = 1 + 3 + 1 + 3 + 3;
+constexpr double kWaveletFastCentre = 1 + 3 + 1 + 3 + 4;
+
+// Per pass, both filters: a surface pixel reads its input color 3 and guides (JBF: depth,
+// normal 3, position 3; wavelet: depth, normal 3, luma, deviation) and writes 3; a background
+// pixel reads its depth and color and writes the color through.
+constexpr int kJbfGuides = 7;
+constexpr int kWaveletGuides = 6;
+StageCost filter_pass(int guide_planes, int taps, double ops, bool surface) {
+  StageCost c;
+  c.read = (surface ? 3 + guide_planes : 1 + 3) * kFloat;
+  c.written = 3 * kFloat;
+  c.ops = surface ? ops : 0;
+  c.taps = surface ? taps : 0;
+  return c;
+}
+
+StageCost times(StageCost c, int passes) {
+  c.read *= passes;
+  c.written *= passes;
+  c.ops *= passes;
+  c.taps *= passes;
+  return c;
+}
+
 }  // namespace
 
 StageCost stage_cost(Mode mode, Stage stage, const SvgfParams& p, bool emission,
@@ -200,14 +290,8 @@ StageCost stage_cost(Mode mode, Stage stage, const SvgfParams& p, bool emission,
     c.planes = "device to host: output 3";
     return c;
   }
-  const StageCost a = pixel_cost(mode, stage, p, emission, true);
-  const StageCost b = pixel_cost(mode, stage, p, emission, false);
-  const double s = surface_fraction < 0 ? 0 : (surface_fraction > 1 ? 1 : surface_fraction);
-  StageCost c = a;
-  c.read = s * a.read + (1 - s) * b.read;
-  c.written = s * a.written + (1 - s) * b.written;
-  c.ops = s * a.ops + (1 - s) * b.ops;
-  return c;
+  return blend(pixel_cost(mode, stage, p, emission, true),
+               pixel_cost(mode, stage, p, emission, false), surface_fraction);
 }
 
 StageCost frame_cost(Mode mode, const SvgfParams& p, bool emission, double surface_fraction) {
@@ -220,5 +304,66 @@ StageCost frame_cost(Mode mode, const SvgfParams& p, bool emission, double surfa
   }
   return total;
 }
+
+StageCost jbf_filter_cost(Mode mode, const JbfParams& p, double surface_fraction) {
+  const bool fast = mode == Mode::Fast;
+  const bool atrous = p.atrous();
+  const int taps = atrous ? kGridTaps : (2 * p.radius + 1) * (2 * p.radius + 1) - 1;
+  const double tap = (fast ? kJbfFastTap : kJbfExactTap) + (atrous ? kJbfB3Tap : 0);
+  const double ops =
+      taps * tap + (fast ? kJbfFastCentre : kJbfExactCentre) + (atrous ? kJbfB3Centre : 0);
+  const int passes = atrous ? p.levels : 1;
+  StageCost c = times(blend(filter_pass(kJbfGuides, taps, ops, true),
+                            filter_pass(kJbfGuides, taps, ops, false), surface_fraction),
+                      passes);
+  c.planes = std::string(atrous ? "per level " : "") +
+             "R color 3, depth 1, normal 3, position 3 (background: depth, color); W color 3";
+  return c;
+}
+
+StageCost wavelet_atrous_cost(Mode mode, const WaveletParams& p, double surface_fraction) {
+  const bool fast = mode == Mode::Fast;
+  const int squarings = NormalPower<>::of(p.sigma_normal).squarings;
+  const double power = squarings >= 0 ? squarings : 1;
+  const double divisions = p.kernel_size >= 7 ? 1 : 0;  // binomial_weight's / 64, / 256
+  const int taps = p.kernel_size * p.kernel_size - 1;
+  const double tap = (fast ? kWaveletFastTap : kWaveletExactTap) + power + 2 * divisions;
+  const double ops =
+      taps * tap + (fast ? kWaveletFastCentre : kWaveletExactCentre) + divisions;
+  StageCost c = times(blend(filter_pass(kWaveletGuides, taps, ops, true),
+                            filter_pass(kWaveletGuides, taps, ops, false), surface_fraction),
+                      p.iterations);
+  c.planes =
+      "per pass R color 3, depth 1, normal 3, luma 1, deviation 1 (background: depth, color); "
+      "W color 3";
+  return c;
+}
+
+std::optional<StageCost> method_stage_cost(const DenoiserConfig& d, const std::string& name,
+                                           bool emission, double surface_fraction) {
+  switch (d.method) {
+    case Method::Svgf:
+      if (const std::optional<Stage> s = svgf_cost_stage(name))
+        return stage_cost(d.mode, *s, d.svgf, emission, surface_fraction);
+      return std::nullopt;
+    case Method::Jbf:
+    case Method::JbfAtrous: {
+      const bool atrous = d.method == Method::JbfAtrous;
+      if (name != (atrous ? jbf_stage::kAtrous : jbf_stage::kFilter) || (atrous && d.jbf.levels <= 0))
+        return std::nullopt;
+      JbfParams p = d.jbf;
+      if (!atrous) p.levels = 0;
+      return jbf_filter_cost(d.mode, p, surface_fraction);
+    }
+    case Method::Wavelet:
+      if (name != wavelet_stage::kAtrous) return std::nullopt;
+      return wavelet_atrous_cost(d.mode, d.wavelet, surface_fraction);
+    case Method::Gaussian:
+      return std::nullopt;
+  }
+  return std::nullopt;
+}
+
+bool frame_is_costed(Method m) { return m == Method::Svgf; }
 
 }  // namespace svgf::bench

@@ -2,7 +2,9 @@
 // What each pipeline stage must move and compute per pixel: the one place the benchmark's
 // bandwidth, roofline floor and docs/benchmarks.md numbers come from. stage_cost.cpp lists, per
 // kernel, the planes it reads and writes (4-byte floats or mesh ids) and a hand count of its
-// floating-point operations.
+// floating-point operations. Counted: every SVGF stage; of the other methods the filter stage
+// alone (the JBF's full window or a-trous levels, the wavelet's a-trous passes), so they have
+// per-stage floors and per-tap costs but no frame floor.
 //
 // Checked: exact mode's plane counts, surface and background pixel, by
 // tests/bench_stage_cost_test.cpp, which runs each stage functor on the CPU and finds the planes
@@ -13,7 +15,9 @@
 #include <string>
 
 #include "core/stage_times.h"
+#include "methods/jbf/params.h"
 #include "methods/svgf/params.h"
+#include "methods/wavelet/params.h"
 #include "methods/svgf/stages.h"
 #include "pipeline/make_denoiser.h"
 
@@ -50,6 +54,7 @@ struct StageCost {
   double read = 0;     // bytes read from memory per pixel, each plane once
   double written = 0;  // bytes written per pixel, each plane once
   double ops = 0;      // floating-point operations per pixel on the steady-state path
+  double taps = 0;     // neighbour taps per pixel (edge-stopping filters; the centre excluded)
   std::string planes;  // which planes, for the docs
   double bytes() const { return read + written; }
 };
@@ -66,5 +71,20 @@ StageCost stage_cost(Mode mode, Stage stage, const SvgfParams& p, bool emission,
 
 // Sum over the filtering stages (transfers excluded).
 StageCost frame_cost(Mode mode, const SvgfParams& p, bool emission, double surface_fraction);
+
+// The JBF's spatial filter in one frame (methods/jbf/filter.h): the full window of p.radius
+// (p.levels 0, stage "filter") or all p.levels a-trous levels (stage "atrous"). Background
+// pixels pass through.
+StageCost jbf_filter_cost(Mode mode, const JbfParams& p, double surface_fraction);
+// The wavelet filter's a-trous passes in one frame (methods/wavelet/atrous.h), all p.iterations.
+StageCost wavelet_atrous_cost(Mode mode, const WaveletParams& p, double surface_fraction);
+
+// The model's count of stage `name` of the configured method, none where that stage has no
+// model (see the top of this file). `d.jbf.levels` is the a-trous form's level count as the
+// denoiser runs it (0: the full window).
+std::optional<StageCost> method_stage_cost(const DenoiserConfig& d, const std::string& name,
+                                           bool emission, double surface_fraction);
+// Whether every filtering stage of `m` is counted, so that its frame has a floor.
+bool frame_is_costed(Method m);
 
 }  // namespace svgf::bench

@@ -44,6 +44,40 @@ std::vector<std::pair<int, int>> chart_params() {
 
 // The CIS 565 kernel-size study: the wavelet filter at its defaults (4 passes) with each size.
 constexpr int kWaveletKernelSizes[] = {3, 5, 7, 9};
+// Its 9x9 comparisons: the Gaussian blur at radius 4 = 3 sigma (the project's radius rule; the
+// blur is separable, two passes of 9 taps), and a dense single-pass 9x9 Gaussian that stops at
+// edges, the JBF's full window of radius 4 with that sigma and no history (alpha 1), a single-
+// frame filter like the wavelet.
+constexpr float kStudySigma = 4.f / 3.f;
+constexpr int kStudyRadius = 4;
+
+std::vector<RunConfig> study_configs(Backend backend, Mode mode, int threads) {
+  std::vector<RunConfig> v;
+  for (int k : kWaveletKernelSizes) v.push_back(wavelet_config(backend, mode, k, threads));
+  v.push_back(gaussian_config(backend, mode, kStudySigma, kStudyRadius, threads));
+  RunConfig dense = jbf_config(backend, mode, 0, threads);
+  dense.denoiser.jbf.radius = kStudyRadius;
+  dense.denoiser.jbf.sigma_coord = kStudySigma;
+  dense.denoiser.jbf.alpha = 1.f;
+  v.push_back(dense);
+  return v;
+}
+
+// The JBF's two forms at their defaults: the full window (radius 16) and 4 a-trous levels; the
+// GPU target compares the a-trous form at 1 to 4 levels with SVGF at as many iterations.
+constexpr int kJbfLevels[] = {1, 2, 3, 4};
+constexpr int kJbfDefaultLevels = 4;
+std::vector<RunConfig> jbf_configs(Backend backend, Mode mode, int threads) {
+  return {jbf_config(backend, mode, 0, threads),
+          jbf_config(backend, mode, kJbfDefaultLevels, threads)};
+}
+
+bool same_size(const std::string& a, const std::string& b) {
+  int aw = 0, ah = 0, bw = 0, bh = 0;
+  parse_size(a, aw, ah);
+  parse_size(b, bw, bh);
+  return aw == bw && ah == bh;
+}
 
 // A single-frame filter's timing on a slow machine: the baselines' time budget, and a short
 // warm-up (there is no history to fill, only caches and allocations).
@@ -304,10 +338,14 @@ int run_cpu_suite(const SuiteOptions& o, SuiteWriter& w) {
     w.finish_section("baselines");
   }
   if (wanted(o, "wavelet")) {
-    for (int k : kWaveletKernelSizes)
-      timed(w, "wavelet", wavelet_config(Backend::Cpu, Mode::Exact, k, all),
-            frames.get(o.chart_size), budgeted(o), ceilings[all]);
+    for (const RunConfig& c : study_configs(Backend::Cpu, Mode::Exact, all))
+      timed(w, "wavelet", c, frames.get(o.chart_size), budgeted(o), ceilings[all]);
     w.finish_section("wavelet");
+  }
+  if (wanted(o, "jbf")) {
+    for (const RunConfig& c : jbf_configs(Backend::Cpu, Mode::Exact, all))
+      timed(w, "jbf", c, frames.get(o.chart_size), budgeted(o), ceilings[all]);
+    w.finish_section("jbf");
   }
   if (wanted(o, "quality")) {
     const std::vector<FrameSet> fixtures = load_fixtures(o);
@@ -317,8 +355,8 @@ int run_cpu_suite(const SuiteOptions& o, SuiteWriter& w) {
     configs.push_back(noisy);
     for (auto [it, tap] : chart_params())
       configs.push_back(svgf_config(Backend::Cpu, Mode::Exact, it, tap, all));
-    for (int k : kWaveletKernelSizes)
-      configs.push_back(wavelet_config(Backend::Cpu, Mode::Exact, k, all));
+    for (const RunConfig& c : study_configs(Backend::Cpu, Mode::Exact, all)) configs.push_back(c);
+    for (const RunConfig& c : jbf_configs(Backend::Cpu, Mode::Exact, all)) configs.push_back(c);
     if (baselines_available())
       for (const Baseline& b : default_baselines()) configs.push_back(baseline_config(b, all));
     quality_all(w, configs, fixtures);
@@ -393,17 +431,35 @@ int run_gpu_suite(const SuiteOptions& o, SuiteWriter& w) {
   }
   if (wanted(o, "wavelet")) {
     for (Mode m : {Mode::Exact, Mode::Fast})
-      for (int k : kWaveletKernelSizes)
-        timed(w, "wavelet", wavelet_config(Backend::Cuda, m, k, 0), frames.get(o.chart_size),
-              o.timing, ceilings);
+      for (const RunConfig& c : study_configs(Backend::Cuda, m, 0))
+        timed(w, "wavelet", c, frames.get(o.chart_size), o.timing, ceilings);
     w.finish_section("wavelet");
+  }
+  if (wanted(o, "jbf")) {
+    for (Mode m : {Mode::Exact, Mode::Fast}) {
+      for (const RunConfig& c : jbf_configs(Backend::Cuda, m, 0))
+        timed(w, "jbf", c, frames.get(o.chart_size), o.timing, ceilings);
+      // At the iterations section's size: the full window's per-tap cost, and the a-trous
+      // levels beside SVGF's iterations there (the default levels again only at another size).
+      const bool other_size = !same_size(it_size, o.chart_size);
+      if (other_size)
+        timed(w, "jbf", jbf_config(Backend::Cuda, m, 0, 0), frames.get(it_size), o.timing,
+              ceilings);
+      for (int levels : kJbfLevels)
+        if (other_size || levels != kJbfDefaultLevels)
+          timed(w, "jbf", jbf_config(Backend::Cuda, m, levels, 0), frames.get(it_size), o.timing,
+                ceilings);
+    }
+    w.finish_section("jbf");
   }
   if (wanted(o, "quality")) {
     const std::vector<FrameSet> fixtures = load_fixtures(o);
     if (!fixtures.empty()) {
       const std::pair<RunConfig, const char*> checks[] = {
           {svgf_config(Backend::Cpu, Mode::Exact, 4, 1, 0), "it4 tap1"},
-          {wavelet_config(Backend::Cpu, Mode::Exact, 5, 0), "wavelet it4 k5"}};
+          {wavelet_config(Backend::Cpu, Mode::Exact, 5, 0), "wavelet it4 k5"},
+          {jbf_config(Backend::Cpu, Mode::Exact, 0, 0), "jbf r16"},
+          {jbf_config(Backend::Cpu, Mode::Exact, kJbfDefaultLevels, 0), "jbf-atrous l4"}};
       for (const auto& [config, what] : checks) try {
           w.add("checks", "quality", bitwise_check(fixtures, config, what));
         } catch (const std::exception& e) {
@@ -413,7 +469,8 @@ int run_gpu_suite(const SuiteOptions& o, SuiteWriter& w) {
       for (Mode m : {Mode::Exact, Mode::Fast}) {
         for (auto [it, tap] : chart_params())
           configs.push_back(svgf_config(Backend::Cuda, m, it, tap, 0));
-        for (int k : kWaveletKernelSizes) configs.push_back(wavelet_config(Backend::Cuda, m, k, 0));
+        for (const RunConfig& c : study_configs(Backend::Cuda, m, 0)) configs.push_back(c);
+        for (const RunConfig& c : jbf_configs(Backend::Cuda, m, 0)) configs.push_back(c);
       }
       quality_all(w, configs, fixtures);
     }
@@ -425,9 +482,10 @@ int run_gpu_suite(const SuiteOptions& o, SuiteWriter& w) {
 }  // namespace
 
 std::vector<std::string> suite_sections(const std::string& name) {
-  if (name == "cpu") return {"sizes", "chart", "coverage", "baselines", "wavelet", "quality"};
+  if (name == "cpu")
+    return {"sizes", "chart", "coverage", "baselines", "wavelet", "jbf", "quality"};
   if (name == "gpu")
-    return {"sizes", "iterations", "coverage", "blocks", "chart", "wavelet", "quality"};
+    return {"sizes", "iterations", "coverage", "blocks", "chart", "wavelet", "jbf", "quality"};
   throw std::invalid_argument("unknown suite '" + name + "' (known: cpu, gpu)");
 }
 
@@ -437,6 +495,10 @@ int run_suite(const SuiteOptions& o) {
     if (std::find(all.begin(), all.end(), s) == all.end())
       throw std::invalid_argument("suite " + o.name + " has no section '" + s + "'");
   SuiteWriter w(o, o.sections.empty() ? all : o.sections);
+  int cw = 0, ch = 0;
+  parse_size(o.chart_size, cw, ch);
+  // The chart reads its points at this size (other sections time some methods at more sizes).
+  w.doc()["chart_size"] = std::to_string(cw) + "x" + std::to_string(ch);
   const int rc = o.name == "cpu" ? run_cpu_suite(o, w) : run_gpu_suite(o, w);
   w.doc()["finished"] = now_iso();
   w.save();

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <sstream>
 
@@ -28,26 +29,26 @@ void stage_table(std::ostringstream& md, const json& e) {
      << " → " << fmt(e["load_after"][0].get<double>(), 2) << "; other processes used "
      << fmt(100 * e.value("others_cpu_share", 0.0), 0) << "% of the CPUs while timing\n\n";
   md << "| stage | median ms | p95 ms | MP/s | B/px read | B/px written | GB/s | % of copy | "
-        "ops/px | floor ms | bound | × floor |\n";
-  md << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|\n";
+        "ops/px | % of float rate | floor ms | bound | × floor |\n";
+  md << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|\n";
   for (const json& s : e["stages"]) {
     md << "| " << s["stage"].get<std::string>() << " | " << fmt(s["ms"]["median"].get<double>(), 4)
        << " | " << fmt(s["ms"]["p95"].get<double>(), 4) << " | "
        << fmt(s["mpix_per_s"].get<double>(), 0) << " | ";
     if (!s.contains("bytes_read_per_px")) {  // no cost model for this method's stages
-      md << "n/a | n/a | n/a | n/a | n/a | n/a | n/a | n/a |\n";
+      md << "n/a | n/a | n/a | n/a | n/a | n/a | n/a | n/a | n/a |\n";
       continue;
     }
     md << fmt(s["bytes_read_per_px"].get<double>(), 0) << " | "
        << fmt(s["bytes_written_per_px"].get<double>(), 0) << " | "
        << fmt(s["achieved_gbs"].get<double>(), 1) << " | ";
     if (s["host_link"].get<bool>()) {
-      md << "(host link) | - | - | - | - |\n";
+      md << "(host link) | - | - | - | - | - |\n";
       continue;
     }
     md << fmt(s["pct_of_copy_bw"].get<double>(), 1) << " | "
-       << fmt(s["ops_per_px"].get<double>(), 0) << " | "
-       << fmt(s["floor"]["floor_ms"].get<double>(), 4) << " | "
+       << fmt(s["ops_per_px"].get<double>(), 0) << " | " << fmt(num(s.value("pct_of_ops", json())), 1)
+       << " | " << fmt(s["floor"]["floor_ms"].get<double>(), 4) << " | "
        << s["floor"]["bound"].get<std::string>() << " | "
        << fmt(s["floor"]["ratio"].get<double>(), 2) << " |\n";
   }
@@ -58,55 +59,105 @@ void stage_table(std::ostringstream& md, const json& e) {
   if (e.contains("floor"))
     md << fmt(e["floor"]["bytes_per_px"].get<double>(), 0) << " (R+W) | | "
        << fmt(e["floor"]["frame_achieved_gbs"].get<double>(), 1) << " | | "
-       << fmt(e["floor"]["ops_per_px"].get<double>(), 0) << " | "
+       << fmt(e["floor"]["ops_per_px"].get<double>(), 0) << " | | "
        << fmt(e["floor"]["floor_ms"].get<double>(), 4) << " | | "
        << fmt(e["floor"]["ratio"].get<double>(), 2) << " |\n";
   else
-    md << "n/a | | n/a | | n/a | n/a | | n/a |\n";
+    md << "n/a | | n/a | | n/a | | n/a | | n/a |\n";
   md << "| frame (wall, denoise() call) | " << fmt(f["wall"]["median"].get<double>(), 4) << " | "
-     << fmt(f["wall"]["p95"].get<double>(), 4) << " | | | | | | | | | |\n";
+     << fmt(f["wall"]["p95"].get<double>(), 4) << " | | | | | | | | | | |\n";
   if (e.contains("peak_device_bytes"))
     md << "\nPeak device memory of the denoiser: "
        << fmt(static_cast<double>(e["peak_device_bytes"].get<size_t>()) / (1 << 20), 1)
        << " MiB.\n";
 }
 
-// The CIS 565 kernel-size study: the wavelet filter's time and quality by kernel size.
+// The CIS 565 kernel-size study: the wavelet filter's time and quality by kernel size beside its
+// 9x9 comparisons, each row's time as a multiple of theirs, so that equal time can be read off.
+std::string short_name(const StudyRow& ref) {
+  return ref.kind == StudyRow::Gaussian ? "Gaussian" : "dense JBF";
+}
+
 void kernel_size_table(std::ostringstream& md, const Results& r) {
-  struct Row {
-    double ms[3] = {NAN, NAN, NAN};  // CPU, CUDA exact, CUDA fast
-    Quality exact, fast;
-  };
-  std::map<int, Row> rows;
-  std::string sizes;
-  auto add = [&](const char* suite, const std::string& mode, int col) {
-    for (const json* e : r.timings(suite, "wavelet")) {
-      const json& c = (*e)["config"];
-      if (!mode.empty() && c["mode"] != mode) continue;
-      Row& row = rows[c["kernel_size"].get<int>()];
-      row.ms[col] = median_ms(*e);
-      Quality q = aggregate(r.quality((*e)["key"].get<std::string>()));
-      if (col == 2)
-        row.fast = q;
-      else if (q.scenes > 0)
-        row.exact = q;
-      const std::string at = std::string(suite) + " " + size_of(*e);
-      if (sizes.find(at) == std::string::npos) sizes += (sizes.empty() ? "" : ", ") + at;
-    }
-  };
-  add("cpu", "", 0);
-  add("gpu", "exact", 1);
-  add("gpu", "fast", 2);
-  if (rows.empty()) return;
-  md << "\n## Wavelet kernel sizes (CIS 565 study; 4 passes, median ms per frame)\n\nTimes at "
-     << sizes
+  const KernelStudy study = kernel_study(r);
+  if (study.rows.empty()) return;
+  const StudyRow* refs[] = {study.find(StudyRow::Gaussian), study.find(StudyRow::Dense)};
+  md << "\n## Wavelet kernel sizes (CIS 565 study) against a 9x9 Gaussian, median ms per frame\n\n"
+        "Times at "
+     << study.sizes
      << "; quality: mean over the fixture scenes (exact mode is bitwise equal on both "
-        "backends).\n\n| kernel | CPU ms | CUDA exact ms | CUDA fast ms | PSNR dB | FLIP | SSIM | "
-        "PSNR dB (fast) |\n|---|---:|---:|---:|---:|---:|---:|---:|\n";
-  for (const auto& [k, row] : rows)
-    md << "| " << k << "x" << k << " | " << fmt(row.ms[0], 1) << " | " << fmt(row.ms[1], 4) << " | "
+        "backends). For each reference filter, × is the row's time over the reference's on "
+        "each platform (CPU / CUDA exact / CUDA fast; at most 1: no slower) and Δ is the row's "
+        "PSNR minus the reference's: a row with × at most 1 and Δ above 0 gives more quality "
+        "for the same time.";
+  for (const StudyRow* ref : refs)
+    if (ref)
+      md << " " << ref->name << ": " << fmt(ref->ms[0], 1) << " / " << fmt(ref->ms[1], 4) << " / "
+         << fmt(ref->ms[2], 4) << " ms, " << fmt(ref->exact.psnr, 2) << " dB.";
+  md << "\n\n| filter | CPU ms | CUDA exact ms | CUDA fast ms | PSNR dB | FLIP | SSIM | PSNR dB "
+        "(fast) |";
+  for (const StudyRow* ref : refs)
+    if (ref) md << " × " << short_name(*ref) << " | Δ dB |";
+  md << "\n|---|---:|---:|---:|---:|---:|---:|---:|";
+  for (const StudyRow* ref : refs)
+    if (ref) md << "---|---:|";
+  md << "\n";
+  for (const StudyRow& row : study.rows) {
+    md << "| " << row.name << " | " << fmt(row.ms[0], 1) << " | " << fmt(row.ms[1], 4) << " | "
        << fmt(row.ms[2], 4) << " | " << fmt(row.exact.psnr, 2) << " | " << fmt(row.exact.flip, 4)
-       << " | " << fmt(row.exact.ssim, 4) << " | " << fmt(row.fast.psnr, 2) << " |\n";
+       << " | " << fmt(row.exact.ssim, 4) << " | " << fmt(row.fast.psnr, 2) << " |";
+    for (const StudyRow* ref : refs) {
+      if (!ref) continue;
+      md << ' ';
+      for (int col = 0; col < 3; ++col)
+        md << (col ? " / " : "") << fmt(row.ms[col] / ref->ms[col], 2);
+      md << " | " << fmt(row.exact.psnr - ref->exact.psnr, 2) << " |";
+    }
+    md << "\n";
+  }
+}
+
+// What a filter's tap costs (stages with a tap count: SVGF's and the JBF's a-trous, the JBF's
+// full window, the wavelet's passes) against the machine's float rate and copy bandwidth. The
+// SVGF rows are the sizes section's at the sizes the other filters were timed at.
+void per_tap_table(std::ostringstream& md, const Results& r) {
+  std::vector<const json*> entries;
+  for (const char* suite : {"gpu", "cpu"}) {
+    std::vector<std::string> sizes;
+    for (const char* section : {"jbf", "wavelet"})
+      for (const json* e : r.timings(suite, section)) {
+        entries.push_back(e);
+        sizes.push_back(size_of(*e));
+      }
+    for (const json* e : r.timings(suite, "sizes"))
+      if (std::find(sizes.begin(), sizes.end(), size_of(*e)) != sizes.end()) entries.push_back(e);
+  }
+  std::ostringstream rows;
+  for (const json* e : entries)
+    for (const json& s : (*e)["stages"]) {
+      if (!s.contains("per_tap")) continue;
+      const json& t = s["per_tap"];
+      rows << "| " << (*e)["label"].get<std::string>() << " | " << size_of(*e) << " | "
+           << s["stage"].get<std::string>() << " | " << fmt(s["ms"]["median"].get<double>(), 3)
+           << " | " << fmt(s["taps_per_px"].get<double>(), 0) << " | "
+           << fmt(t["ns"].get<double>(), 4) << " | " << fmt(t["taps_per_s"].get<double>() / 1e9, 3)
+           << " | " << fmt(t["ops"].get<double>(), 0) << " | " << fmt(t["bytes"].get<double>(), 2)
+           << " | " << fmt(s["pct_of_ops"].get<double>(), 1) << " | "
+           << fmt(s["pct_of_copy_bw"].get<double>(), 1) << " | "
+           << s["floor"]["bound"].get<std::string>() << " | "
+           << fmt(s["floor"]["ratio"].get<double>(), 2) << " |\n";
+    }
+  if (rows.str().empty()) return;
+  md << "\n## Cost a tap (filter stages, bench/stage_cost.cpp)\n\nA tap is one neighbour of one "
+        "surface pixel (taps a pixel: the model's steady-state count times the surface "
+        "fraction). ns a tap: the stage's median time over the frame's taps; ops and bytes a tap: "
+        "the counted operations and bytes of the stage over its taps; % of float rate: the "
+        "counted operations a second against the measured ceiling (CPU: mul+add chains; GPU: "
+        "FP32 FMA instructions); % of copy: the counted bytes a second against the measured "
+        "copy bandwidth.\n\n| configuration | size | stage | median ms | taps/px | ns a tap | "
+        "G taps/s | ops a tap | bytes a tap | % of float rate | % of copy | bound | × floor "
+        "|\n|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|\n"
+     << rows.str();
 }
 
 // A reading as "0.4970 ms", with its label in front when it has one.
@@ -365,13 +416,14 @@ std::string summary_markdown(const Results& r, const std::vector<Point>& pts,
      << " | " << fmt(noisy.static_output_change, 5) << " | |\n";
 
   kernel_size_table(md, r);
+  per_tap_table(md, r);
 
   // Quality per scene of the default configurations.
   md << "\n## Quality per fixture scene (mean over frames)\n\n| configuration | scene | frames | "
         "PSNR dB | SSIM | relMSE | FLIP | error change | output change "
         "|\n|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
-  std::vector<std::string> keys = {"noisy input", kDefaultCpu, kDefaultExact,
-                                   kDefaultFast,  kWaveletCpu, kWaveletFast};
+  std::vector<std::string> keys = {"noisy input", kDefaultCpu, kDefaultExact, kDefaultFast,
+                                   kWaveletCpu,   kWaveletFast, kJbfCpu,      kJbfAtrousCpu};
   for (const json* e : r.timings("cpu", "baselines")) keys.push_back((*e)["key"]);
   for (const std::string& k : keys)
     for (const auto& [scene, e] : r.quality(k)) {
@@ -383,8 +435,9 @@ std::string summary_markdown(const Results& r, const std::vector<Point>& pts,
     }
 
   // The cost model every floor above comes from.
-  md << "\n## Cost model (bench/stage_cost.cpp), per pixel, default parameters (4 iterations, "
-        "feedback tap 1), frames with emission planes\n\n| mode | stage | surface pixel: bytes "
+  md << "\n## Cost model (bench/stage_cost.cpp), per pixel, default parameters (SVGF: 4 "
+        "iterations, feedback tap 1, frames with emission planes; then the other methods' filter "
+        "stages)\n\n| mode | stage | surface pixel: bytes "
         "read | written | ops | background pixel: bytes read | written | ops | planes |\n"
         "|---|---|---:|---:|---:|---:|---:|---:|---|\n";
   const SvgfParams defaults;
@@ -404,6 +457,26 @@ std::string summary_markdown(const Results& r, const std::vector<Point>& pts,
        << fmt(a.written, 0) << " | " << fmt(a.ops, 0) << " | " << fmt(b.read, 0) << " | "
        << fmt(b.written, 0) << " | " << fmt(b.ops, 0) << " | |\n";
   }
+  // The other methods' filter stages at their defaults (their other stages are not counted).
+  JbfParams jbf_atrous;
+  jbf_atrous.levels = 4;
+  const struct {
+    const char* what;
+    std::function<StageCost(Mode, double)> cost;
+  } filters[] = {
+      {"jbf filter (radius 16)", [](Mode m, double s) { return jbf_filter_cost(m, JbfParams(), s); }},
+      {"jbf-atrous atrous (4 levels)",
+       [&](Mode m, double s) { return jbf_filter_cost(m, jbf_atrous, s); }},
+      {"wavelet atrous (5x5, 4 passes)",
+       [](Mode m, double s) { return wavelet_atrous_cost(m, WaveletParams(), s); }}};
+  for (const auto& f : filters)
+    for (Mode mode : {Mode::Exact, Mode::Fast}) {
+      const StageCost a = f.cost(mode, 1.0), b = f.cost(mode, 0.0);
+      md << "| " << to_string(mode) << " | " << f.what << ", " << fmt(a.taps, 0) << " taps | "
+         << fmt(a.read, 0) << " | " << fmt(a.written, 0) << " | " << fmt(a.ops, 0) << " | "
+         << fmt(b.read, 0) << " | " << fmt(b.written, 0) << " | " << fmt(b.ops, 0) << " | "
+         << a.planes << " |\n";
+    }
 
   // Per-stage tables.
   md << "\n## Per-stage tables\n\nBytes and operations per pixel come from bench/stage_cost.cpp "
@@ -411,7 +484,7 @@ std::string summary_markdown(const Results& r, const std::vector<Point>& pts,
         "max(bytes / copy bandwidth, ops / FP32 rate) with the measured ceilings; the frame's "
         "floor is the sum over its stages.\n";
   for (const char* s : {"gpu", "cpu"})
-    for (const char* section : {"sizes", "wavelet"})
+    for (const char* section : {"sizes", "wavelet", "jbf"})
       for (const json* e : r.timings(s, section)) stage_table(md, *e);
   for (const json* e : r.timings("cpu", "baselines")) {
     md << "\n**" << (*e)["label"].get<std::string>() << "** at " << size_of(*e) << ": median "

@@ -11,17 +11,19 @@ namespace svgf::bench {
 namespace {
 
 const std::set<std::string> kFields = {
-    "id",         "description", "source",    "select", "rows",   "metric", "ratio",
-    "each_stage", "comparator",  "threshold", "unit",   "digits", "context"};
+    "id",    "description", "source",     "select",    "rows", "metric", "ratio",
+    "stage", "each_stage",  "comparator", "threshold", "unit", "digits", "context"};
 const char* const kRequired[] = {"id",     "description", "source",   "select",
                                  "metric", "comparator",  "threshold"};
 
 // Where a filter's value sits in a timing entry (size, suite and section are not fields).
 const std::map<std::string, std::string> kFilterFields = {{"scene", "/input/scene"},
+                                                          {"method", "/config/method"},
                                                           {"mode", "/config/mode"},
                                                           {"threads", "/config/threads"},
                                                           {"iterations", "/config/iterations"},
                                                           {"feedback_tap", "/config/feedback_tap"},
+                                                          {"levels", "/config/levels"},
                                                           {"key", "/key"}};
 
 bool is_filter(const std::string& name) {
@@ -51,6 +53,14 @@ struct Checker {
       fail(where + " is not a JSON pointer: " + e.what());
     }
   }
+  void ratio(const json& r, const std::string& where) const {
+    require(r.is_object(), where + " is not an object");
+    for (const auto& [name, value] : r.items())
+      require(name == "numerator" || name == "denominator",
+              where + ": unknown field \"" + name + "\"");
+    for (const char* part : {"numerator", "denominator"})
+      if (r.contains(part)) filters(r[part], where + " " + part);
+  }
   void readings(const json& t) const {
     require(!t.contains("unit") || t["unit"].is_string(), "unit is not a string");
     require(!t.contains("digits") ||
@@ -72,20 +82,28 @@ void check_target(const Checker& c, const json& t) {
     c.require(t["rows"].is_array() && !t["rows"].empty(), "rows is not a non-empty list");
     for (const json& row : t["rows"]) {
       c.require(row.is_object() && row.value("label", json()).is_string(), "a row without a label");
-      c.filters(row.value("select", json::object()),
-                "row \"" + row["label"].get<std::string>() + "\"");
+      const std::string where = "row \"" + row["label"].get<std::string>() + "\"";
+      for (const auto& [name, value] : row.items())
+        c.require(name == "label" || name == "select" || name == "ratio",
+                  where + ": unknown field \"" + name + "\"");
+      c.filters(row.value("select", json::object()), where);
+      if (row.contains("ratio")) {
+        c.require(t.contains("ratio"), where + " has a ratio but the target has none");
+        c.ratio(row["ratio"], where + " ratio");
+      }
     }
   }
   c.pointer(t["metric"], "metric");
   if (t.contains("ratio")) {
-    c.require(t["ratio"].is_object() && t["ratio"].contains("numerator") &&
-                  t["ratio"].contains("denominator"),
+    c.require(t["ratio"].contains("numerator") && t["ratio"].contains("denominator"),
               "ratio needs a numerator and a denominator");
-    c.filters(t["ratio"]["numerator"], "ratio numerator");
-    c.filters(t["ratio"]["denominator"], "ratio denominator");
+    c.ratio(t["ratio"], "ratio");
     c.require(!t.contains("each_stage") && !t.contains("context"),
               "a ratio takes neither each_stage nor context");
   }
+  if (t.contains("stage"))
+    c.require(t["stage"].is_string() && !t.contains("each_stage"),
+              "stage is not a name, or comes with each_stage");
   if (t.contains("each_stage")) {
     c.require(t["each_stage"].is_object(), "each_stage is not an object");
     for (const auto& [p, v] : t["each_stage"].items()) c.pointer(p, "each_stage field");
@@ -141,6 +159,15 @@ const json* select_one(const Results& r, const json& filters, const std::string&
     found = e;
   }
   return found;
+}
+
+// What metric and context point into: the entry, or its stage named by the target's "stage"
+// (nullptr when the entry has no such stage).
+const json* measured_in(const json& e, const json& t) {
+  if (!t.contains("stage")) return &e;
+  for (const json& s : e["stages"])
+    if (s.value("stage", "") == t["stage"]) return &s;
+  return nullptr;
 }
 
 double value_at(const json& obj, const json& pointer) {
@@ -241,12 +268,21 @@ std::vector<TargetResult> evaluate_targets(const json& targets, const Results& r
         out.push_back(res);
       };
       if (t.contains("ratio")) {
-        const json* a = select_one(r, merged(select, t["ratio"]["numerator"]), id);
-        const json* b = select_one(r, merged(select, t["ratio"]["denominator"]), id);
+        const json row_ratio = row.value("ratio", json::object());
+        auto part = [&](const char* name) {
+          const json* e = select_one(
+              r,
+              merged(merged(select, t["ratio"][name]), row_ratio.value(name, json::object())),
+              id);
+          return e ? measured_in(*e, t) : nullptr;
+        };
+        const json* a = part("numerator");
+        const json* b = part("denominator");
         add(label, a && b ? value_at(*a, t["metric"]) / value_at(*b, t["metric"]) : NAN, nullptr);
         continue;
       }
-      const json* e = select_one(r, select, id);
+      const json* found = select_one(r, select, id);
+      const json* e = found ? measured_in(*found, t) : nullptr;
       if (e && t.contains("each_stage")) {
         for (const json& stage : (*e)["stages"]) {
           bool all = true;

@@ -2,16 +2,19 @@
 // The benchmark's targets, kept as data (bench/targets.json) and checked against the suite
 // results by one generic evaluator, so that a target changes in the data file, not in code.
 //
-// A target (every field but rows, ratio, each_stage and context is required):
+// A target (every field but rows, ratio, stage, each_stage and context is required):
 //   id, description, source    what it is and which issue set it
 //   select                     {"suite", "section", filters...}: the timing entries it reads;
-//                              filters: size ("1920x1080"), scene, mode, threads, iterations,
-//                              feedback_tap, key
-//   rows                       [{"label", "select": {filters...}}]: one verdict a row, each
-//                              row's filters over the target's (a row may change the section)
+//                              filters: size ("1920x1080"), scene, method, mode, threads,
+//                              iterations, feedback_tap, levels, key
+//   rows                       [{"label", "select": {filters...}, "ratio": {...}}]: one verdict
+//                              a row, each row's filters over the target's (a row may change the
+//                              section); a row's ratio filters go over the target's ratio's
 //   metric                     a JSON pointer into the selected entry ("/frame_ms/filter/median")
 //   ratio                      {"numerator": {filters}, "denominator": {filters}}: the metric
-//                              of one entry over another's
+//                              of one entry over another's (each may name its own section)
+//   stage                      a stage name: metric and context point into that stage of the
+//                              entry (of both entries of a ratio)
 //   each_stage                 {pointer: value}: one verdict per stage of the entry whose
 //                              fields match; metric and context point into the stage
 //   comparator, threshold      "<=" or ">=" a number, or "in" [low, high]

@@ -1,9 +1,9 @@
 // bench/stage_cost.cpp's plane counts checked against the kernels: each exact-mode SVGF stage
-// functor runs on a small steady-state frame (a surface everywhere, history old enough, the four
-// bilinear reprojection taps passing) whose every plane is its own buffer. A plane is read when
-// changing it changes the output at a probe pixel, and written when the kernel overwrites the
-// canary there. Operation counts are not checked (they stay hand-counted), nor fast mode (its
-// flavor exists only under nvcc).
+// functor, the JBF's pass and the wavelet's a-trous pass runs on a small steady-state frame (a
+// surface everywhere, history old enough, the four bilinear reprojection taps passing) whose
+// every plane is its own buffer. A plane is read when changing it changes the output at a probe
+// pixel, and written when the kernel overwrites the canary there. Operation counts are not
+// checked (they stay hand-counted), nor fast mode (its flavor exists only under nvcc).
 #include <catch2/catch.hpp>
 #include <algorithm>
 #include <cmath>
@@ -17,12 +17,15 @@
 
 #include "bench/stage_cost.h"
 #include "core/copy.h"
+#include "core/normal_weight.h"
+#include "methods/jbf/filter.h"
 #include "methods/svgf/atrous.h"
 #include "methods/svgf/demodulate.h"
 #include "methods/svgf/flavors.h"
 #include "methods/svgf/remodulate.h"
 #include "methods/svgf/reproject.h"
 #include "methods/svgf/variance.h"
+#include "methods/wavelet/atrous.h"
 
 using namespace svgf;
 using bench::Stage;
@@ -229,20 +232,30 @@ Planes model(Stage stage, bool emission, bool surface) {
   return {c.read / per, c.written / per};
 }
 
+// The planes `k` reads and writes at the surface or background probes against the model's `m`.
 template <class Kernel>
-void require_model(Rig& rig, const Kernel& k, Stage stage, bool emission, bool surface) {
+void require_planes(Rig& rig, const Kernel& k, const std::string& what, bool surface,
+                    const Planes& m) {
   const std::vector<Pixel>& probes = surface ? kSurface : kBackground;
   const std::vector<std::string> read = rig.read(k, probes);
   const std::vector<std::string> written = rig.written(k, probes);
-  const Planes m = model(stage, emission, surface);
   std::string r, w;
   for (const std::string& n : read) r += n + " ";
   for (const std::string& n : written) w += n + " ";
-  INFO(bench::stage_name(stage) << (surface ? ", surface" : ", background")
-                                << (emission ? ", emission" : "") << ": read " << r << "; written "
-                                << w);
+  INFO(what << (surface ? ", surface" : ", background") << ": read " << r << "; written " << w);
   CHECK(static_cast<double>(read.size()) == m.read);
   CHECK(static_cast<double>(written.size()) == m.written);
+}
+
+template <class Kernel>
+void require_model(Rig& rig, const Kernel& k, Stage stage, bool emission, bool surface) {
+  require_planes(rig, k, std::string(bench::stage_name(stage)) + (emission ? ", emission" : ""),
+                 surface, model(stage, emission, surface));
+}
+
+// A filter stage's count in planes of one pass.
+Planes per_pass(const bench::StageCost& c, int passes) {
+  return {c.read / (4.0 * passes), c.written / (4.0 * passes)};
 }
 
 }  // namespace
@@ -332,4 +345,92 @@ TEST_CASE("stage cost: remodulate's planes are the kernel's", "[bench][stage_cos
                                                              sink};
     require_model(rig, k, Stage::Remodulate, emission, true);
   }
+}
+
+TEST_CASE("stage cost: a JBF pass's planes are the kernel's", "[bench][stage_cost][jbf]") {
+  // Positions on a gently tilted plane, normals near +z: every weight term stays far from 0.
+  const auto position = [](int c) {
+    return [c](int x, int y) {
+      const float v[3] = {0.01f * x, 0.01f * y, 5.f + 0.002f * noise(x, y, 4)};
+      return v[c];
+    };
+  };
+  for (int levels : {0, 3}) {  // the full window; the a-trous form at steps 1, 2, 4
+    JbfParams p;
+    p.levels = levels;
+    for (int level = 0; level < std::max(levels, 1); ++level) {
+      CAPTURE(levels, level);
+      Rig rig;
+      JbfPass<ExactArith> k;
+      k.guides = guides(rig, "guides", false);
+      k.position = {rig.input("position.x", position(0)), rig.input("position.y", position(1)),
+                    rig.input("position.z", position(2))};
+      k.in = rig.input_rgb("in", 0.2f, 1.f);
+      k.out = rig.output_rgb("out");
+      k.radius = p.atrous() ? 2 : p.radius;
+      k.step = 1 << level;
+      k.b3 = p.atrous();
+      k.scales = JbfScales::of(p);
+      for (bool surface : {true, false})
+        require_planes(rig, k, levels ? "jbf a-trous" : "jbf full window", surface,
+                       per_pass(bench::jbf_filter_cost(Mode::Exact, p, surface ? 1.0 : 0.0),
+                                std::max(levels, 1)));
+    }
+  }
+}
+
+TEST_CASE("stage cost: a wavelet a-trous pass's planes are the kernel's",
+          "[bench][stage_cost][wavelet]") {
+  for (int size : {3, 5, 7, 9}) {
+    WaveletParams p;
+    p.kernel_size = size;
+    for (int step : {1, 4}) {
+      CAPTURE(size, step);
+      Rig rig;
+      WaveletIteration<ExactArith, NormalPower<>> k;
+      k.guides = guides(rig, "guides", false);
+      k.in = rig.input_rgb("in", 0.2f, 1.f);
+      k.out = rig.output_rgb("out");
+      k.luma = rig.input("luma", 0.2f, 1.f);
+      k.deviation = rig.input("deviation", 0.1f, 0.5f);
+      k.step = step;
+      k.kernel_size = size;
+      k.inv_sigma_depth = 1.f / (p.sigma_depth + p.epsilon);
+      k.sigma_luma = p.sigma_luma;
+      k.epsilon = p.epsilon;
+      k.normal_power = NormalPower<>::of(p.sigma_normal);
+      for (bool surface : {true, false})
+        require_planes(rig, k, "wavelet a-trous", surface,
+                       per_pass(bench::wavelet_atrous_cost(Mode::Exact, p, surface ? 1.0 : 0.0),
+                                p.iterations));
+    }
+  }
+}
+
+TEST_CASE("stage cost: the filters' tap counts follow their footprints", "[bench][stage_cost]") {
+  JbfParams jbf;
+  CHECK(bench::jbf_filter_cost(Mode::Exact, jbf, 1.0).taps == 33 * 33 - 1);
+  CHECK(bench::jbf_filter_cost(Mode::Exact, jbf, 0.5).taps == (33 * 33 - 1) / 2.0);
+  jbf.levels = 4;
+  CHECK(bench::jbf_filter_cost(Mode::Fast, jbf, 1.0).taps == 4 * 24);
+  WaveletParams wavelet;
+  wavelet.kernel_size = 9;
+  CHECK(bench::wavelet_atrous_cost(Mode::Exact, wavelet, 1.0).taps == 4 * 80);
+  CHECK(bench::stage_cost(Mode::Exact, Stage::Atrous, SvgfParams(), false, 1.0).taps == 4 * 24);
+  // Fast mode does fewer operations a tap than exact mode, never more.
+  CHECK(bench::jbf_filter_cost(Mode::Fast, jbf, 1.0).ops <
+        bench::jbf_filter_cost(Mode::Exact, jbf, 1.0).ops);
+  CHECK(bench::wavelet_atrous_cost(Mode::Fast, wavelet, 1.0).ops <
+        bench::wavelet_atrous_cost(Mode::Exact, wavelet, 1.0).ops);
+  // Only the filter stage of another method is counted, and no frame floor exists for it.
+  DenoiserConfig d;
+  d.method = Method::JbfAtrous;
+  d.jbf.levels = 4;
+  CHECK(bench::method_stage_cost(d, "atrous", false, 1.0).has_value());
+  CHECK_FALSE(bench::method_stage_cost(d, "temporal", false, 1.0).has_value());
+  CHECK_FALSE(bench::frame_is_costed(Method::JbfAtrous));
+  d.method = Method::Jbf;
+  CHECK(bench::method_stage_cost(d, "filter", false, 1.0)->taps == 33 * 33 - 1);
+  d.method = Method::Gaussian;
+  CHECK_FALSE(bench::method_stage_cost(d, "blur_x", false, 1.0).has_value());
 }

@@ -1,6 +1,6 @@
 # The benchmark's cost model against the kernels, and its runs of any method read back through
 # the results model (built with svgf-bench's library).
 if(TARGET svgf_bench_lib)
-  svgf_add_tests(svgf_bench_tests SOURCES bench_stage_cost_test.cpp bench_methods_test.cpp
+  svgf_add_tests(svgf_bench_tests SOURCES bench_stage_cost_test.cpp bench_methods_test.cpp bench_targets_test.cpp
                  LIBS svgf_bench_lib)
 endif()

@@ -20,6 +20,12 @@ set style line 6 lc rgb "#8c564b" pt 3 ps 1.4
 set style line 7 lc rgb "#e377c2" pt 15 ps 1.4
 set style line 8 lc rgb "#9467bd" lw 2 dt 2
 set style line 9 lc rgb "#ff7f0e" lw 2 dt 2
+set style line 10 lc rgb "#bcbd22" pt 4 ps 1.3
+set style line 11 lc rgb "#6b6ecf" pt 6 ps 1.3
+set style line 12 lc rgb "#b5cf6b" pt 8 ps 1.3
+set style line 13 lc rgb "#e7969c" pt 12 ps 1.5
+set style line 14 lc rgb "#393b79" pt 10 ps 1.5
+set style line 15 lc rgb "#843c39" pt 14 ps 1.5
 front(plat) = data . "/pareto_" . metric . "_" . plat . ".dat"
 f(s) = data . "/points_" . s . ".dat"
 # Series without points (say, no GPU results yet) are skipped with a gnuplot warning.
@@ -41,4 +47,16 @@ plot \
   f("cuda_exact_wavelet") using 1:col ls 6 title "wavelet CUDA exact", \
   f("cuda_exact_wavelet") using 1:col:6 with labels offset 0.6,-0.7 left font ",8" tc rgb "#8c564b" notitle, \
   f("cuda_fast_wavelet") using 1:col ls 7 title "wavelet CUDA fast", \
-  f("cuda_fast_wavelet") using 1:col:6 with labels offset -0.6,0.7 right font ",8" tc rgb "#e377c2" notitle
+  f("cuda_fast_wavelet") using 1:col:6 with labels offset -0.6,0.7 right font ",8" tc rgb "#e377c2" notitle, \
+  f("cpu_gaussian") using 1:col ls 10 title "Gaussian CPU exact", \
+  f("cpu_gaussian") using 1:col:6 with labels offset 0.6,0.7 left font ",8" tc rgb "#bcbd22" notitle, \
+  f("cuda_exact_gaussian") using 1:col ls 11 title "Gaussian CUDA exact", \
+  f("cuda_exact_gaussian") using 1:col:6 with labels offset 0.6,-0.7 left font ",8" tc rgb "#6b6ecf" notitle, \
+  f("cuda_fast_gaussian") using 1:col ls 12 title "Gaussian CUDA fast", \
+  f("cuda_fast_gaussian") using 1:col:6 with labels offset -0.6,0.7 right font ",8" tc rgb "#b5cf6b" notitle, \
+  f("cpu_jbf") using 1:col ls 13 title "JBF CPU exact", \
+  f("cpu_jbf") using 1:col:6 with labels offset 0.6,0.7 left font ",8" tc rgb "#e7969c" notitle, \
+  f("cuda_exact_jbf") using 1:col ls 14 title "JBF CUDA exact", \
+  f("cuda_exact_jbf") using 1:col:6 with labels offset 0.6,-0.7 left font ",8" tc rgb "#393b79" notitle, \
+  f("cuda_fast_jbf") using 1:col ls 15 title "JBF CUDA fast", \
+  f("cuda_fast_jbf") using 1:col:6 with labels offset -0.6,0.7 right font ",8" tc rgb "#843c39" notitle
