@@ -36,6 +36,8 @@ struct ExactArith {
   SVGF_HD static Vec3 mad(Vec3 a, float b, Vec3 c) { return c + a * b; }
   SVGF_HD static Vec2 mad(Vec2 a, float b, Vec2 c) { return c + a * b; }
   SVGF_HD static float recip(float x) { return 1.f / x; }
+  SVGF_HD static float sqrt(float x) { return sqrtf(x); }
+  SVGF_HD static float acos(float x) { return det_acos(x); }
   // 1 / (scale * sqrt(x)).
   SVGF_HD static float inv_scaled_sqrt(float scale, float x) { return 1.f / (scale * sqrtf(x)); }
   // Division by one value, several times: IEEE division each time.
@@ -119,6 +121,17 @@ struct FastArith {
     return make_vec2(__fmaf_rn(a.x, b, c.x), __fmaf_rn(a.y, b, c.y));
   }
   __device__ __forceinline__ static float recip(float x) { return __fdividef(1.f, x); }
+  // One special-function instruction (relative error about 2^-22); 0 stays 0.
+  __device__ __forceinline__ static float sqrt(float x) {
+    float r;
+    asm("sqrt.approx.ftz.f32 %0, %1;" : "=f"(r) : "f"(x));
+    return r;
+  }
+  struct ApproxSqrt {
+    __device__ __forceinline__ float operator()(float x) const { return FastArith::sqrt(x); }
+  };
+  // Exact mode's polynomial (core/det_math.h) around the approximate square root.
+  __device__ __forceinline__ static float acos(float x) { return acos_cephes(x, ApproxSqrt()); }
   __device__ __forceinline__ static float inv_scaled_sqrt(float scale, float x) {
     return rsqrtf(x) * __fdividef(1.f, scale);
   }

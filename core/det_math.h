@@ -156,15 +156,24 @@ SVGF_HD float det_asin_small(float x) {
   return x + x * (z * p);
 }
 
+// IEEE square root: the same bits on both sides.
+struct IeeeSqrt {
+  SVGF_HD float operator()(float x) const { return sqrtf(x); }
+};
+
 // acos(x) for x in [-1, 1] (Cephes' acosf): near +-1 through asin of sqrt((1 -+ x) / 2), so the
-// small angles keep their relative accuracy; IEEE sqrt, the same bits on both sides. Absolute
-// error below 4e-7 (tests/det_math_test.cpp). NaN stays NaN.
+// small angles keep their relative accuracy. With IEEE sqrt (det_acos) the same bits on both
+// sides, absolute error below 4e-7 (tests/det_math_test.cpp); fast mode passes an approximate
+// square root (FastArith::acos). NaN stays NaN.
 // Written with selects instead of branches so the CPU rows vectorize it; the values are those
 // of picking the branch first (for x < -1/2, 0.5 - 0.5 |x| is 0.5 + 0.5 x exactly).
-SVGF_HD float det_acos(float x) {
+template <class Sqrt>
+SVGF_HD float acos_cephes(float x, Sqrt sqrt_of) {
   const float ax = abs_f(x);
-  const float s = det_asin_small(ax > 0.5f ? sqrtf(0.5f - 0.5f * ax) : x);
+  const float s = det_asin_small(ax > 0.5f ? sqrt_of(0.5f - 0.5f * ax) : x);
   return x > 0.5f ? 2.f * s : (x < -0.5f ? 3.14159274f - 2.f * s : 1.57079637f - s);
 }
+
+SVGF_HD float det_acos(float x) { return acos_cephes(x, IeeeSqrt()); }
 
 }  // namespace svgf

@@ -4,8 +4,8 @@
 //                 - D_normal^2 / (2 s_normal^2) - D_plane^2 / (2 s_plane^2))
 // p the pixel coordinates, c the color, D_normal = acos(clamp(n_i . n_j, -1, 1)) the angle
 // between the normals, D_plane = n_i . (x_j - x_i) / |x_j - x_i| (0 where the positions
-// coincide) with x the world positions. The project's own acos and exp: the same bits on every
-// backend.
+// coincide) with x the world positions. Exact mode: the project's own acos and exp, IEEE sqrt and
+// division, the same bits on every backend; fast mode: FastArith's (core/arith.h).
 #include "core/arith.h"
 #include "core/det_math.h"
 #include "core/vec.h"
@@ -31,14 +31,14 @@ struct JbfSample {
 template <class Arith>
 SVGF_HD float jbf_guide_exponent(const JbfSample& i, const JbfSample& j, const JbfScales& s) {
   const Vec3 dc = i.color - j.color;
-  const float e_color = dot(dc, dc) * s.color;
-  const float cosine = min_f(1.f, max_f(-1.f, dot(i.normal, j.normal)));
-  const float angle = det_acos(cosine);
+  const float e_color = Arith::dot(dc, dc) * s.color;
+  const float cosine = Arith::min(1.f, Arith::max(-1.f, Arith::dot(i.normal, j.normal)));
+  const float angle = Arith::acos(cosine);
   const float e_normal = angle * angle * s.normal;
   const Vec3 dx = j.position - i.position;
-  const float len = sqrtf(dot(dx, dx));
-  const float ratio = dot(i.normal, dx) / len;  // both sides computed: a select, so the CPU
-  const float d_plane = len > 0.f ? ratio : 0.f;  // rows vectorize it
+  const float len = Arith::sqrt(Arith::dot(dx, dx));
+  const float ratio = Arith::divide_by(len)(Arith::dot(i.normal, dx));  // both sides computed:
+  const float d_plane = len > 0.f ? ratio : 0.f;  // a select, so the CPU rows vectorize it
   const float e_plane = d_plane * d_plane * s.plane;
   return (e_color + e_normal) + e_plane;
 }
