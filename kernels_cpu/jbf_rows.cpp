@@ -93,10 +93,11 @@ void jbf_tap_row(const JbfPass<ExactArith>& k, int y, int dy, RowScratch& s) {
   constexpr int kGroup = 5;
   const GuideView& g = k.guides;
   const int w = g.width, row = y * w, row_offset = dy * k.step * w;
-  float* sw = s[0];
-  float* sr = s[1];
-  float* sg = s[2];
-  float* sb = s[3];
+  const ColorSums sums(s, 0);
+  float* sw = sums.weight;
+  float* sr = sums.r;
+  float* sg = sums.g;
+  float* sb = sums.b;
   const auto tap = [&](int dx, int from, int to) {
     if (from >= to) return;
     jbf_tap<kB3>(g.depth, g.normal.r, g.normal.g, g.normal.b, k.position.r, k.position.g,
@@ -147,18 +148,8 @@ void jbf_tap_row(const JbfPass<ExactArith>& k, int y, int dy, RowScratch& s) {
 void jbf_row(const JbfPass<ExactArith>& k, int y, RowScratch& s) {
   const GuideView& g = k.guides;
   const int w = g.width, h = g.height, row = y * w;
-  float* __restrict sw = s[0];
-  float* __restrict sr = s[1];
-  float* __restrict sg = s[2];
-  float* __restrict sb = s[3];
-  const float k0 = k.b3 ? binomial_weight(5, 0) * binomial_weight(5, 0) : 1.f;
-  for (int x = 0; x < w; ++x) {
-    const int i = row + x;
-    sw[x] = k0;
-    sr[x] = k.in.r[i] * k0;
-    sg[x] = k.in.g[i] * k0;
-    sb[x] = k.in.b[i] * k0;
-  }
+  const ColorSums sums(s, 0);
+  sums.start(k.in, row, w, k.b3 ? binomial_weight(5, 0) * binomial_weight(5, 0) : 1.f);
   // The tap rows in the per-pixel kernel's order; one outside the image is skipped, as there.
   for (int dy = -k.radius; dy <= k.radius; ++dy) {
     const int yq = y + dy * k.step;
@@ -168,13 +159,7 @@ void jbf_row(const JbfPass<ExactArith>& k, int y, RowScratch& s) {
     else
       jbf_tap_row<false>(k, y, dy, s);
   }
-  for (int x = 0; x < w; ++x) {
-    const int i = row + x;
-    const Vec3 centre = k.in.load(i);
-    k.out.store(i, g.depth[i] > 0.f
-                       ? ExactArith::divide_by(sw[x])(make_vec3(sr[x], sg[x], sb[x]))
-                       : centre);
-  }
+  sums.finish(g.depth, k.in, k.out, row, w);
 }
 
 }  // namespace

@@ -8,7 +8,9 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "core/arith.h"
 #include "core/normal_weight.h"
+#include "core/views.h"
 #include "kernels_cpu/ieee_guard.h"
 #include "kernels_cpu/parallel_for.h"
 
@@ -54,6 +56,36 @@ struct RowScratch {
   std::vector<std::vector<float>> plane;
   RowScratch(int planes, int width) : plane(static_cast<size_t>(planes), std::vector<float>(width)) {}
   float* operator[](int k) { return plane[static_cast<size_t>(k)].data(); }
+};
+
+// The weighted color sums of a row of a filter pass whose centre weighs `centre_weight`:
+// started with the centre's own term, finished as sum / weight on surfaces (depth > 0), the
+// input passed through elsewhere: the per-pixel kernels' first and last lines.
+struct ColorSums {
+  float* weight;
+  float* r;
+  float* g;
+  float* b;
+  ColorSums(RowScratch& s, int first)
+      : weight(s[first]), r(s[first + 1]), g(s[first + 2]), b(s[first + 3]) {}
+
+  void start(ConstRgbView in, int row, int width, float centre_weight) const {
+    for (int x = 0; x < width; ++x) {
+      const int i = row + x;
+      weight[x] = centre_weight;
+      r[x] = in.r[i] * centre_weight;
+      g[x] = in.g[i] * centre_weight;
+      b[x] = in.b[i] * centre_weight;
+    }
+  }
+  void finish(const float* depth, ConstRgbView in, RgbView out, int row, int width) const {
+    for (int x = 0; x < width; ++x) {
+      const int i = row + x;
+      out.store(i, depth[i] > 0.f
+                       ? ExactArith::divide_by(weight[x])(make_vec3(r[x], g[x], b[x]))
+                       : in.load(i));
+    }
+  }
 };
 
 }  // namespace svgf::cpu

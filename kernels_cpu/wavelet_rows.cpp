@@ -35,20 +35,10 @@ void wavelet_row(const WaveletExactIteration& k, int y, RowScratch& s, const Pow
   const GuideView& g = k.guides;
   const int w = g.width, h = g.height, row = y * w;
   float* __restrict inv_sigma_luma = s[0];
-  float* __restrict sw = s[1];
-  float* __restrict sr = s[2];
-  float* __restrict sg = s[3];
-  float* __restrict sb = s[4];
+  const ColorSums sums(s, 1);
   const float k0 = binomial_weight(k.kernel_size, 0);
-  const float centre_weight = k0 * k0;
-  for (int x = 0; x < w; ++x) {
-    const int i = row + x;
-    inv_sigma_luma[x] = k.inv_sigma_luma(i);
-    sw[x] = centre_weight;
-    sr[x] = k.in.r[i] * centre_weight;
-    sg[x] = k.in.g[i] * centre_weight;
-    sb[x] = k.in.b[i] * centre_weight;
-  }
+  sums.start(k.in, row, w, k0 * k0);  // the centre: W = 1
+  for (int x = 0; x < w; ++x) inv_sigma_luma[x] = k.inv_sigma_luma(row + x);
   // The taps in the per-pixel kernel's order; a tap outside the image is skipped, as there.
   const int r = k.kernel_size / 2;
   for (int dy = -r; dy <= r; ++dy) {
@@ -60,19 +50,14 @@ void wavelet_row(const WaveletExactIteration& k, int y, RowScratch& s, const Pow
       const int x0 = std::max(0, -off), x1 = std::min(w, w - off);
       if (x0 < x1)
         wavelet_tap(g.depth, g.normal.r, g.normal.g, g.normal.b, k.luma, k.in.r, k.in.g, k.in.b,
-                    inv_sigma_luma, sw, sr, sg, sb, row, (yq - y) * w + off, x0, x1,
+                    inv_sigma_luma, sums.weight, sums.r, sums.g, sums.b, row,
+                    (yq - y) * w + off, x0, x1,
                     k.inv_sigma_depth,
                     binomial_weight(k.kernel_size, dx) * binomial_weight(k.kernel_size, dy),
                     power);
     }
   }
-  for (int x = 0; x < w; ++x) {
-    const int i = row + x;
-    const Vec3 centre = k.in.load(i);
-    k.out.store(i, g.depth[i] > 0.f
-                       ? ExactArith::divide_by(sw[x])(make_vec3(sr[x], sg[x], sb[x]))
-                       : centre);
-  }
+  sums.finish(g.depth, k.in, k.out, row, w);
 }
 
 }  // namespace
