@@ -60,7 +60,7 @@ const char* const kUsageHead =
     "  --frames N            timed frames (default 100)\n"
     "  --warmup N            untimed frames first (default 10)\n"
     "  --budget-s S          stop timing after S seconds once 10 frames are timed (default none)\n"
-    "  --block WxH           CUDA block shape (default 16x8)\n"
+    "  --block WxH           CUDA block shape (default 32x8)\n"
     "  --quality             with --fixture: per-frame PSNR, SSIM, relMSE, FLIP and temporal\n"
     "                        stability against the reference\n"
     "  --json PATH           write the results as JSON\n"

@@ -411,10 +411,10 @@ int run_gpu_suite(const SuiteOptions& o, SuiteWriter& w) {
       timed(w, "coverage", svgf_config(Backend::Cuda, m, 4, 1, 0), room, o.timing, ceilings);
     w.finish_section("coverage");
   }
-  if (wanted(o, "blocks")) {  // launch shapes other than the default 16x8, at the same size
+  if (wanted(o, "blocks")) {  // launch shapes other than the default 32x8, at the same size
     for (Mode m : {Mode::Exact, Mode::Fast})
       for (const auto& [bx, by] :
-           std::vector<std::pair<int, int>>{{32, 8}, {32, 4}, {16, 16}, {64, 2}}) {
+           std::vector<std::pair<int, int>>{{16, 8}, {32, 4}, {16, 16}, {64, 2}, {128, 1}}) {
         RunConfig c = svgf_config(Backend::Cuda, m, 4, 1, 0);
         c.denoiser.block_x = bx;
         c.denoiser.block_y = by;

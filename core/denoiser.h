@@ -28,7 +28,7 @@ struct EngineConfig {
   Backend backend = Backend::Cpu;
   Mode mode = Mode::Exact;
   int threads = 0;   // CPU worker threads; 0: all cores
-  int block_x = 16;  // CUDA block shape (any shape gives the same bits)
+  int block_x = 32;  // CUDA block shape (any shape gives the same bits; kernels_cuda/launch_shape.h)
   int block_y = 8;
 };
 
