@@ -38,6 +38,7 @@ const char* const kUsageHead =
     "Denoises the sequence in IN_DIR (frame_NNNN.exr + manifest.json) into OUT_DIR:\n"
     "frame_NNNN.exr (linear RGB), preview/ PNGs (noisy | denoised | reference), report.json\n"
     "and report.csv (per-frame time, replaced samples, PSNR and relMSE against the reference).\n"
+    "OUT_DIR may not be IN_DIR, lie inside it or hold it (a usage error, exit 2).\n"
     "\n"
     "options:\n"
     "  --method M                svgf, gaussian, wavelet, jbf, jbf-atrous (default svgf)\n"
@@ -92,6 +93,31 @@ std::string fixed(double v, int digits) {
   return s.str();
 }
 
+// True when `inner` is `outer` or lies inside it, after resolving ., .. and symbolic links
+// (weakly: the output folder need not exist yet).
+bool same_or_inside(const fs::path& inner, const fs::path& outer) {
+  const fs::path a = fs::weakly_canonical(fs::absolute(inner));
+  const fs::path b = fs::weakly_canonical(fs::absolute(outer));
+  auto ia = a.begin();
+  for (auto ib = b.begin(); ib != b.end(); ++ib, ++ia) {
+    if (ib->empty()) continue;  // the trailing "" of a path ending in a separator
+    if (ia == a.end() || *ia != *ib) return false;
+  }
+  return true;
+}
+
+// The output is written frame by frame: an output folder that is the input folder or holds it,
+// or lies inside it, would overwrite or mix with the input (issue 15: `svgf denoise X X`
+// replaced every input frame). Refused before anything is read or written.
+void check_folders_apart(const std::string& in_dir, const std::string& out_dir) {
+  if (same_or_inside(out_dir, in_dir))
+    throw UsageError("OUT_DIR '" + out_dir + "' is IN_DIR '" + in_dir +
+                     "' or inside it: the output would overwrite or mix with the input");
+  if (same_or_inside(in_dir, out_dir))
+    throw UsageError("IN_DIR '" + in_dir + "' is inside OUT_DIR '" + out_dir +
+                     "': the output would mix with the input");
+}
+
 }  // namespace
 
 int denoise_command(const std::vector<std::string>& args) {
@@ -104,6 +130,7 @@ int denoise_command(const std::vector<std::string>& args) {
   }
   if (o.positional().size() != 2) throw UsageError("denoise needs IN_DIR and OUT_DIR");
   const std::string in_dir = o.positional()[0], out_dir = o.positional()[1];
+  check_folders_apart(in_dir, out_dir);
   const DenoiserConfig config = config_from(o);
   const float exposure = o.get_float("exposure", 1.f);
   const bool previews = !o.has("no-preview");

@@ -1,6 +1,10 @@
 // The svgf denoise command end to end on a generated sequence: outputs, report, bad input.
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <unistd.h>
 
@@ -8,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/denoise_command.h"
+#include "app/options.h"
 #include "io/exr_frame.h"
 #include "io/sequence.h"
 #include "synthetic_sequence.h"
@@ -79,6 +84,48 @@ TEST_CASE("svgf denoise: bad input is an error naming the file", "[app]") {
                       Catch::Contains("--iterations"));
   fs::remove_all(in);
   fs::remove_all(out);
+}
+
+namespace {
+
+std::string file_bytes(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+}
+
+}  // namespace
+
+// Issue 15: `svgf denoise X X` overwrote every input frame. An output folder that is the input
+// folder, or lies inside it, or holds it, is refused before anything is written, and the input
+// is left byte for byte as it was; a sibling whose name merely starts the same is fine.
+TEST_CASE("svgf denoise refuses an output folder that overlaps the input folder", "[app]") {
+  const fs::path in = write_synthetic(scratch("overlap_in"), 2);
+  std::vector<std::pair<fs::path, std::string>> before;
+  for (const auto& e : fs::directory_iterator(in)) before.push_back({e.path(), file_bytes(e.path())});
+  const std::vector<std::pair<std::string, std::string>> refused = {
+      {in.string(), "OUT_DIR"},
+      {(in / "").string(), "OUT_DIR"},
+      {(in / "out").string(), "OUT_DIR"},
+      {(in / "out" / ".." / "..").string(), "IN_DIR"},
+      {in.parent_path().string(), "IN_DIR"},
+  };
+  for (const auto& [out, names] : refused) {
+    INFO("OUT_DIR " << out);
+    try {
+      app::denoise_command({in.string(), out, "--backend", "cpu"});
+      FAIL("accepted");
+    } catch (const app::UsageError& e) {
+      REQUIRE_THAT(e.what(), Catch::Contains(names));
+    }
+  }
+  for (const auto& [path, bytes] : before) REQUIRE(file_bytes(path) == bytes);
+  REQUIRE(!fs::exists(in / "preview"));
+  REQUIRE(!fs::exists(in / "out"));
+  const fs::path sibling = fs::path(in.string() + "_out");
+  REQUIRE(app::denoise_command({in.string(), sibling.string(), "--backend", "cpu", "--no-preview"}) == 0);
+  REQUIRE(fs::exists(sibling / "report.json"));
+  fs::remove_all(in);
+  fs::remove_all(sibling);
 }
 
 TEST_CASE("svgf denoise --method wavelet: its flags reach the filter, bad values name the flag",
