@@ -7,8 +7,10 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <memory>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -131,8 +133,19 @@ int denoise_command(const std::vector<std::string>& args) {
   if (o.positional().size() != 2) throw UsageError("denoise needs IN_DIR and OUT_DIR");
   const std::string in_dir = o.positional()[0], out_dir = o.positional()[1];
   check_folders_apart(in_dir, out_dir);
-  const DenoiserConfig config = config_from(o);
+  // Every argument is checked before anything is read or written: a bad value or an impossible
+  // combination (fast mode on the CPU) is a usage error, exit 2.
+  DenoiserConfig config;
+  std::unique_ptr<Denoiser> denoiser;
+  try {
+    config = config_from(o);
+    denoiser = make_denoiser(config);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
   const float exposure = o.get_float("exposure", 1.f);
+  if (!(exposure > 0.f) || !std::isfinite(exposure))
+    throw UsageError("--exposure must be a finite number > 0, got '" + o.get("exposure", "") + "'");
   const bool previews = !o.has("no-preview");
 
   const io::Sequence sequence(in_dir);
@@ -141,7 +154,6 @@ int denoise_command(const std::vector<std::string>& args) {
   fs::create_directories(fs::path(out_dir) / (previews ? "preview" : ""), ec);
   if (ec) throw io::IoError(out_dir + ": cannot create the output folder (" + ec.message() + ")");
 
-  auto denoiser = make_denoiser(config);
   std::fprintf(stderr, "svgf: %s: %d frames of %dx%d (%s) with %s\n", in_dir.c_str(), frames,
                sequence.manifest().width, sequence.manifest().height,
                sequence.manifest().scene.c_str(), denoiser->description().c_str());

@@ -128,6 +128,33 @@ TEST_CASE("svgf denoise refuses an output folder that overlaps the input folder"
   fs::remove_all(sibling);
 }
 
+// Issue 15, item 5: a bad argument or an impossible combination is a usage error (exit 2 from
+// main) naming the flag, found before the output folder is made.
+TEST_CASE("svgf denoise: bad arguments are usage errors found before any output", "[app]") {
+  const fs::path in = write_synthetic(scratch("args_in"), 1), out = scratch("args_out");
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"--backend", "gpu"}, "gpu"},
+      {{"--mode", "fast", "--backend", "cpu"}, "fast mode"},
+      {{"--mode", "slow"}, "slow"},
+      {{"--exposure", "-1"}, "--exposure"},
+      {{"--exposure", "0"}, "--exposure"},
+      {{"--exposure", "inf"}, "--exposure"},
+  };
+  for (const auto& [flags, names] : cases) {
+    std::vector<std::string> args = {in.string(), out.string()};
+    args.insert(args.end(), flags.begin(), flags.end());
+    INFO(flags.front() << " " << flags[1]);
+    try {
+      app::denoise_command(args);
+      FAIL("accepted");
+    } catch (const app::UsageError& e) {
+      REQUIRE_THAT(e.what(), Catch::Contains(names));
+    }
+    REQUIRE(!fs::exists(out));
+  }
+  fs::remove_all(in);
+}
+
 TEST_CASE("svgf denoise --method wavelet: its flags reach the filter, bad values name the flag",
           "[app][wavelet]") {
   const fs::path in = write_synthetic(scratch("wavelet_in"), 2), out = scratch("wavelet_out");
