@@ -6,6 +6,7 @@
 
 #include "app/denoise_command.h"
 #include "app/options.h"
+#include "io/printable.h"
 
 namespace {
 
@@ -31,11 +32,11 @@ int main(int argc, char** argv) {
     if (args[0] == "denoise") return svgf::app::denoise_command(rest);
     throw svgf::app::UsageError("unknown command '" + args[0] + "'");
   } catch (const svgf::app::UsageError& e) {
-    std::fprintf(stderr, "svgf: %s\n%s", e.what(),
+    std::fprintf(stderr, "svgf: %s\n%s", svgf::io::printable(e.what()).c_str(),
                  args[0] == "denoise" ? svgf::app::denoise_usage().c_str() : kUsage);
     return 2;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "svgf: error: %s\n", e.what());
+    std::fprintf(stderr, "svgf: error: %s\n", svgf::io::printable(e.what()).c_str());
     return 1;
   }
 }

@@ -20,6 +20,7 @@
 #include "bench/suites.h"
 #include "bench/workload.h"
 #include "io/atomic_file.h"
+#include "io/printable.h"
 
 namespace fs = std::filesystem;
 using svgf::app::kMethodParamUsage;
@@ -253,10 +254,11 @@ int main(int argc, char** argv) {
     if (!args.empty() && args[0] == "run") args.erase(args.begin());
     return run_command(args, command);
   } catch (const UsageError& e) {
-    std::fprintf(stderr, "svgf-bench: %s\n(svgf-bench --help lists the options)\n", e.what());
+    std::fprintf(stderr, "svgf-bench: %s\n(svgf-bench --help lists the options)\n",
+                 svgf::io::printable(e.what()).c_str());
     return 2;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "svgf-bench: %s\n", e.what());
+    std::fprintf(stderr, "svgf-bench: %s\n", svgf::io::printable(e.what()).c_str());
     return 1;
   }
 }

@@ -23,6 +23,7 @@
 #include "io/atomic_file.h"
 #include "io/exr_frame.h"
 #include "io/png.h"
+#include "io/printable.h"
 #include "io/sequence.h"
 #include "io/sha256.h"
 
@@ -759,4 +760,20 @@ TEST_CASE("read_manifest errors name the manifest and the key", "[io][sequence][
     CHECK_THAT(io_error_of([&] { io::read_manifest(dir); }),
                Contains(path) && Contains("'camera_cuts[0]'"));
   }
+}
+
+// Issue 15: text from a file goes into error messages; control characters and broken UTF-8 must
+// not reach the terminal raw, while readable names (accents included) stay as they are.
+TEST_CASE("printable: control characters and invalid UTF-8 are escaped, UTF-8 is kept",
+          "[io]") {
+  using svgf::io::printable;
+  REQUIRE(printable("color.R missing") == "color.R missing");
+  REQUIRE(printable("\x1b[31mPWN") == "\\x1b[31mPWN");
+  REQUIRE(printable(std::string("a\0b", 3)) == "a\\x00b");
+  REQUIRE(printable("tab\there\nnew\x7f") == "tab\\x09here\\x0anew\\x7f");
+  REQUIRE(printable("sc\xc3\xa8ne") == "sc\xc3\xa8ne");              // U+00E8, kept
+  REQUIRE(printable("\xe2\x82\xac 5") == "\xe2\x82\xac 5");          // U+20AC, kept
+  REQUIRE(printable("csi \xc2\x9b" "2J") == "csi \\xc2\\x9b2J");     // C1 control U+009B
+  REQUIRE(printable("raw \x9b" "2J") == "raw \\x9b2J");              // stray byte
+  REQUIRE(printable("cut \xe2\x82") == "cut \\xe2\\x82");            // truncated sequence
 }

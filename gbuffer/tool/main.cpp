@@ -4,6 +4,7 @@
 #include <exception>
 #include <string>
 
+#include "io/printable.h"
 #include "tool/commands.h"
 
 namespace {
@@ -44,10 +45,11 @@ int main(int argc, char** argv) {
     }
     throw UsageError("unknown command '" + cmd + "'");
   } catch (const UsageError& e) {
-    std::fprintf(stderr, "svgf-fixtures: %s (svgf-fixtures --help shows the usage)\n", e.what());
+    std::fprintf(stderr, "svgf-fixtures: %s (svgf-fixtures --help shows the usage)\n",
+                 svgf::io::printable(e.what()).c_str());
     return 2;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "svgf-fixtures: error: %s\n", e.what());
+    std::fprintf(stderr, "svgf-fixtures: error: %s\n", svgf::io::printable(e.what()).c_str());
     return 1;
   }
 }
