@@ -263,9 +263,13 @@ void write_frame(const std::string& path, const Frame& frame, const FrameStorage
   write_exr(path, w);
 }
 
-Frame detail::read_frame(const std::string& path, bool* has_index) {
+Frame detail::read_frame(const std::string& path, bool* has_index, const ExpectedSize& expected) {
   return with_input_file(path, [&](Imf::InputFile& file) {
     ExrReader r(path, file.header());
+    if (expected.width > 0 && (r.width() != expected.width || r.height() != expected.height))
+      throw IoError(path + ": frame is " + std::to_string(r.width()) + "x" +
+                    std::to_string(r.height()) + ", " + expected.source + " says " +
+                    std::to_string(expected.width) + "x" + std::to_string(expected.height));
     if (const auto* v = r.attribute<Imf::IntAttribute>(kAttrFormatVersion);
         v && v->value() != kFormatVersion)
       throw IoError(path + ": unsupported " + kAttrFormatVersion + " " +

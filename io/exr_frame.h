@@ -47,8 +47,14 @@ void write_frame(const std::string& path, const Frame& frame, const FrameStorage
 Frame read_frame(const std::string& path);
 
 namespace detail {
-// read_frame that also reports whether the file carried svgf.frame (Sequence::read needs it).
-Frame read_frame(const std::string& path, bool* has_frame_index);
+// read_frame that also reports whether the file carried svgf.frame (Sequence::read needs it)
+// and, given an expected size (a manifest's), refuses another size from the header alone,
+// before any channel is read or any pixel memory allocated (a small file can claim 30000^2).
+struct ExpectedSize {
+  int width = 0, height = 0;  // 0: any
+  std::string source;         // named in the message, e.g. "manifest"
+};
+Frame read_frame(const std::string& path, bool* has_frame_index, const ExpectedSize& expected = {});
 }  // namespace detail
 
 // Writes a linear RGB image (channels R, G, B, FLOAT) atomically: the denoiser's output.

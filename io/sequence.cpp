@@ -201,10 +201,8 @@ std::string Sequence::path(int k) const {
 Frame Sequence::read(int k) const {
   const std::string p = path(k);
   bool has_index = false;
-  Frame f = detail::read_frame(p, &has_index);
-  if (f.width() != manifest_.width || f.height() != manifest_.height)
-    throw IoError(p + ": frame is " + size_str(f.width(), f.height()) + ", manifest says " +
-                  size_str(manifest_.width, manifest_.height));
+  // The size is checked from the header, before anything is allocated.
+  Frame f = detail::read_frame(p, &has_index, {manifest_.width, manifest_.height, "manifest"});
   if (!has_index) f.index = k;
   return f;
 }

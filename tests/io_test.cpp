@@ -682,6 +682,28 @@ TEST_CASE("Sequence::read checks the frame size against the manifest", "[io][seq
   CHECK(io_error_of([&] { seq.read(0); }) == file + ": frame is 8x6, manifest says 9x6");
 }
 
+// Issue 15: a small file whose header claims a huge size made the reader allocate for it before
+// comparing with the manifest. The size now comes first, from the header alone: a frame file of
+// the wrong size reports its size even when it also lacks every channel but R, G, B.
+TEST_CASE("Sequence::read checks the size from the header before reading channels",
+          "[io][sequence]") {
+  TempDir tmp;
+  const std::string dir = tmp / "seq";
+  {
+    io::SequenceWriter w(dir, io::FrameStorage{});
+    w.add(random_frame(8, 6, 1));
+    w.commit(test_manifest());
+  }
+  const io::Sequence seq(dir);
+  const std::string file = seq.path(0);
+  Image rgb(40, 30, 3, 0.5f);
+  fs::remove(file);
+  io::write_rgb_exr(file, rgb);
+  CHECK(io_error_of([&] { seq.read(0); }) == file + ": frame is 40x30, manifest says 8x6");
+  // Read on its own (no manifest), the same file is refused for its missing channels.
+  CHECK_THAT(io_error_of([&] { io::read_frame(file); }), !Contains("manifest"));
+}
+
 TEST_CASE("Sequence::read numbers frames without svgf.frame by position", "[io][sequence]") {
   TempDir tmp;
   const std::string dir = tmp / "seq";
