@@ -50,6 +50,8 @@ const char* const kUsageHead =
     "  --frames N                denoise only the first N frames\n";
 const char* const kUsageTail =
     "  --exposure E              preview exposure (default 1)\n"
+    "  --no-verify               skip checking each frame file's SHA-256 against the manifest\n"
+    "                            (checked for every frame before any output by default)\n"
     "  --no-preview              skip the PNG previews\n";
 
 }  // namespace
@@ -125,7 +127,7 @@ void check_folders_apart(const std::string& in_dir, const std::string& out_dir) 
 int denoise_command(const std::vector<std::string>& args) {
   std::set<std::string> valued = {"method", "backend", "mode", "threads", "frames", "exposure"};
   valued.insert(method_param_flags().begin(), method_param_flags().end());
-  const Options o(args, valued, {"no-preview", "help"});
+  const Options o(args, valued, {"no-preview", "no-verify", "help"});
   if (o.has("help")) {
     std::fputs(denoise_usage().c_str(), stdout);
     return 0;
@@ -150,6 +152,10 @@ int denoise_command(const std::vector<std::string>& args) {
 
   const io::Sequence sequence(in_dir);
   const int frames = std::min(sequence.size(), o.get_int("frames", sequence.size(), 1, 1 << 20));
+  // Every frame to be read is checked against the manifest's SHA-256 before the output folder
+  // is made: a damaged or swapped file stops the run before anything is written.
+  if (!o.has("no-verify"))
+    for (int k = 0; k < frames; ++k) sequence.verify_checksum(k);
   std::error_code ec;
   fs::create_directories(fs::path(out_dir) / (previews ? "preview" : ""), ec);
   if (ec) throw io::IoError(out_dir + ": cannot create the output folder (" + ec.message() + ")");

@@ -155,6 +155,24 @@ TEST_CASE("svgf denoise: bad arguments are usage errors found before any output"
   fs::remove_all(in);
 }
 
+// Issue 15, item 2: the manifest's SHA-256 was never checked. Every frame is now verified before
+// the output folder is made; --no-verify skips it.
+TEST_CASE("svgf denoise verifies the frames' SHA-256 before writing anything", "[app]") {
+  const fs::path in = write_synthetic(scratch("sha_in"), 3), out = scratch("sha_out");
+  {  // a byte appended to frame 2: the EXR still reads, the checksum no longer matches
+    std::ofstream f(in / io::frame_file_name(2), std::ios::binary | std::ios::app);
+    f << '!';
+  }
+  REQUIRE_THROWS_WITH(app::denoise_command({in.string(), out.string(), "--backend", "cpu"}),
+                      Catch::Contains(io::frame_file_name(2)) && Catch::Contains("SHA-256"));
+  REQUIRE(!fs::exists(out));
+  REQUIRE(app::denoise_command({in.string(), out.string(), "--backend", "cpu", "--no-preview",
+                                "--no-verify"}) == 0);
+  REQUIRE(fs::exists(out / io::frame_file_name(2)));
+  fs::remove_all(in);
+  fs::remove_all(out);
+}
+
 TEST_CASE("svgf denoise --method wavelet: its flags reach the filter, bad values name the flag",
           "[app][wavelet]") {
   const fs::path in = write_synthetic(scratch("wavelet_in"), 2), out = scratch("wavelet_out");
