@@ -7,41 +7,10 @@
 namespace svgf::cpu {
 namespace {
 
-// One tap (offset j - i, squared pixel distance d2) for the pixels x0..x1 of a row; the body is
-// the per-pixel kernel's.
-template <bool kB3>
-SVGF_TAP_LOOP void jbf_tap(const float* __restrict depth, const float* __restrict nx,
-                           const float* __restrict ny, const float* __restrict nz,
-                           const float* __restrict px, const float* __restrict py,
-                           const float* __restrict pz, const float* __restrict cr,
-                           const float* __restrict cg, const float* __restrict cb,
-                           float* __restrict sw, float* __restrict sr, float* __restrict sg,
-                           float* __restrict sb, int row, int offset, int x0, int x1, float d2,
-                           float kw, const JbfScales scales) {
-  // With this many arrays GCC gives up proving them apart despite restrict; they are distinct.
-#pragma GCC ivdep
-  for (int x = x0; x < x1; ++x) {
-    const int i = row + x, j = row + offset + x;
-    const JbfSample c{make_vec3(cr[i], cg[i], cb[i]), make_vec3(nx[i], ny[i], nz[i]),
-                      make_vec3(px[i], py[i], pz[i])};
-    const JbfSample q{make_vec3(cr[j], cg[j], cb[j]), make_vec3(nx[j], ny[j], nz[j]),
-                      make_vec3(px[j], py[j], pz[j])};
-    float w = jbf_weight<ExactArith>(c, q, d2, scales);
-    if (kB3) w = w * kw;
-    // A tap without a surface adds -0, the identity of IEEE addition (+0 would turn a -0 sum
-    // into +0): unconditional stores, which GCC vectorizes, unlike a conditional store.
-    const bool surface = depth[j] > 0.f;
-    sw[x] = sw[x] + (surface ? w : -0.f);
-    sr[x] = sr[x] + (surface ? cr[j] * w : -0.f);
-    sg[x] = sg[x] + (surface ? cg[j] * w : -0.f);
-    sb[x] = sb[x] + (surface ? cb[j] * w : -0.f);
-  }
-}
-
 // N taps of one tap row (offsets off[t], squared distances d2[t], B3 weights kw[t], in the
-// kernel's order) for pixels x0..x1 whose N taps all lie inside the image: the same terms in
-// the same order as N jbf_tap calls, with the centre and the sums held in registers (the
-// centre's nine loads and the sums' loads and stores once per N taps instead of once per tap).
+// kernel's order) for pixels x0..x1 whose N taps all lie inside the image; the body is the
+// per-pixel kernel's. The centre and the sums stay in registers across the N taps (the centre's
+// nine loads and the sums' loads and stores once per N taps); N = 1 serves the border pixels.
 template <int N, bool kB3>
 SVGF_TAP_LOOP void jbf_tap_group(const float* __restrict depth, const float* __restrict nx,
                                  const float* __restrict ny, const float* __restrict nz,
@@ -59,6 +28,7 @@ SVGF_TAP_LOOP void jbf_tap_group(const float* __restrict depth, const float* __r
     d2[t] = d2s[t];
     kw[t] = kws[t];
   }
+  // With this many arrays GCC gives up proving them apart despite restrict; they are distinct.
 #pragma GCC ivdep
   for (int x = x0; x < x1; ++x) {
     const int i = row + x;
@@ -72,6 +42,8 @@ SVGF_TAP_LOOP void jbf_tap_group(const float* __restrict depth, const float* __r
                         make_vec3(px[j], py[j], pz[j])};
       float w = jbf_weight<ExactArith>(c, q, d2[t], scales);
       if (kB3) w = w * kw[t];
+      // A tap without a surface adds -0, the identity of IEEE addition (+0 would turn a -0 sum
+      // into +0): no branch, so GCC vectorizes the loop.
       const bool surface = depth[j] > 0.f;
       w_sum = w_sum + (surface ? w : -0.f);
       r_sum = r_sum + (surface ? cr[j] * w : -0.f);
@@ -94,18 +66,6 @@ void jbf_tap_row(const JbfPass<ExactArith>& k, int y, int dy, RowScratch& s) {
   const GuideView& g = k.guides;
   const int w = g.width, row = y * w, row_offset = dy * k.step * w;
   const ColorSums sums(s, 0);
-  float* sw = sums.weight;
-  float* sr = sums.r;
-  float* sg = sums.g;
-  float* sb = sums.b;
-  const auto tap = [&](int dx, int from, int to) {
-    if (from >= to) return;
-    jbf_tap<kB3>(g.depth, g.normal.r, g.normal.g, g.normal.b, k.position.r, k.position.g,
-                 k.position.b, k.in.r, k.in.g, k.in.b, sw, sr, sg, sb, row,
-                 row_offset + dx * k.step, from, to,
-                 static_cast<float>((dx * dx + dy * dy) * k.step * k.step),
-                 binomial_weight(5, dx) * binomial_weight(5, dy), k.scales);
-  };
   for (int first = -k.radius; first <= k.radius; first += kGroup) {
     // This group's taps, the centre left out.
     int dxs[kGroup], offsets[kGroup];
@@ -121,26 +81,29 @@ void jbf_tap_row(const JbfPass<ExactArith>& k, int y, int dy, RowScratch& s) {
       ++n;
     }
     if (n == 0) continue;
+    // A group function's N taps from tap t0 on, for the pixels from .. to.
+    const auto taps = [&](auto group, int t0, int from, int to) {
+      if (from < to)
+        group(g.depth, g.normal.r, g.normal.g, g.normal.b, k.position.r, k.position.g,
+              k.position.b, k.in.r, k.in.g, k.in.b, sums.weight, sums.r, sums.g, sums.b, row,
+              offsets + t0, from, to, d2 + t0, kw + t0, k.scales);
+    };
     // Pixels whose taps dxs[0] .. dxs[n-1] all lie inside: the group at once.
     const int in0 = std::min(w, std::max(0, -dxs[0] * k.step));
     const int in1 = std::max(in0, std::min(w, w - dxs[n - 1] * k.step));
     for (int t = 0; t < n; ++t) {  // left border: each tap where it lies inside
       const int off = dxs[t] * k.step;
-      tap(dxs[t], std::max(0, -off), std::min(in0, w - off));
+      taps(jbf_tap_group<1, kB3>, t, std::max(0, -off), std::min(in0, w - off));
     }
-    if (in0 < in1) {
-      const auto group = n == kGroup ? jbf_tap_group<kGroup, kB3>
-                                     : n == 4 ? jbf_tap_group<4, kB3>
-                                              : n == 3 ? jbf_tap_group<3, kB3>
-                                                       : n == 2 ? jbf_tap_group<2, kB3>
-                                                                : jbf_tap_group<1, kB3>;
-      group(g.depth, g.normal.r, g.normal.g, g.normal.b, k.position.r, k.position.g,
-            k.position.b, k.in.r, k.in.g, k.in.b, sw, sr, sg, sb, row, offsets, in0, in1, d2, kw,
-            k.scales);
-    }
+    taps(n == kGroup ? jbf_tap_group<kGroup, kB3>
+         : n == 4    ? jbf_tap_group<4, kB3>
+         : n == 3    ? jbf_tap_group<3, kB3>
+         : n == 2    ? jbf_tap_group<2, kB3>
+                     : jbf_tap_group<1, kB3>,
+         0, in0, in1);
     for (int t = 0; t < n; ++t) {  // right border
       const int off = dxs[t] * k.step;
-      tap(dxs[t], std::max(in1, std::max(0, -off)), std::min(w, w - off));
+      taps(jbf_tap_group<1, kB3>, t, std::max(in1, std::max(0, -off)), std::min(w, w - off));
     }
   }
 }
