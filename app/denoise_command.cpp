@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <iostream>
 #include <memory>
 #include <set>
 #include <sstream>
@@ -53,6 +54,12 @@ const char* const kUsageTail =
     "  --no-verify               skip checking each frame file's SHA-256 against the manifest\n"
     "                            (checked for every frame before any output by default)\n"
     "  --no-preview              skip the PNG previews\n";
+
+// Pixels per kind of repair the sanitize stage made (core/sanitize.h).
+nlohmann::json repairs_json(const InputRepairs& r) {
+  return {{"color", r.color},   {"albedo", r.albedo},   {"emission", r.emission},
+          {"normal", r.normal}, {"surface", r.surface}, {"motion", r.motion}};
+}
 
 }  // namespace
 
@@ -181,6 +188,8 @@ int denoise_command(const std::vector<std::string>& args) {
   ProgressBar bar("denoise", frames);
   double total_ms = 0, psnr_sum = 0, noisy_psnr_sum = 0;
   int64_t replaced_total = 0;
+  InputRepairs repairs_total;
+  int frames_repaired = 0;
   int with_reference = 0;
   Image out;
   for (int k = 0; k < frames; ++k) {
@@ -193,6 +202,8 @@ int denoise_command(const std::vector<std::string>& args) {
     total_ms += ms;
     const FrameReport& r = denoiser->last_report();
     replaced_total += r.replaced_samples;
+    repairs_total += r.repairs;
+    frames_repaired += r.repairs.total() > 0 ? 1 : 0;
 
     const std::string name = io::frame_file_name(k);
     io::write_rgb_exr((fs::path(out_dir) / name).string(), out);
@@ -206,6 +217,7 @@ int denoise_command(const std::vector<std::string>& args) {
     fr["filter_ms"] = r.times.filter_ms();
     for (const auto& [stage, stage_ms] : r.times.entries()) fr["stage_ms"][stage] = stage_ms;
     fr["replaced_samples"] = r.replaced_samples;
+    fr["repairs"] = repairs_json(r.repairs);
     csv << k << ',' << ms << ',' << r.times.filter_ms() << ',' << r.replaced_samples;
     std::string detail = fixed(ms, 1) + " ms";
     if (in.has_reference()) {
@@ -232,6 +244,11 @@ int denoise_command(const std::vector<std::string>& args) {
 
   report["mean_time_ms"] = total_ms / frames;
   report["replaced_samples"] = replaced_total;
+  report["repairs"] = repairs_json(repairs_total);
+  if (frames_repaired > 0)
+    std::cerr << "svgf: warning: bad input repaired in " << frames_repaired << " of " << frames
+              << " frames (pixels: " << repairs_json(repairs_total).dump()
+              << "; docs/bad-input.md has the rule)\n";
   if (with_reference) {
     report["mean_psnr_noisy_db"] = noisy_psnr_sum / with_reference;
     report["mean_psnr_denoised_db"] = psnr_sum / with_reference;

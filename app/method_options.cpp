@@ -79,12 +79,6 @@ void read_method_params(const Options& o, DenoiserConfig& c) {
   p.phi_color = o.get_float("phi-color", p.phi_color);
   p.phi_normal = o.get_float("phi-normal", p.phi_normal);
   p.phi_depth = o.get_float("phi-depth", p.phi_depth);
-  if (!(p.alpha > 0.f && p.alpha <= 1.f) || !(p.moments_alpha > 0.f && p.moments_alpha <= 1.f))
-    throw UsageError("--alpha and --moments-alpha must lie in (0, 1]");
-  const auto finite_at_least = [](float v, float lo) { return std::isfinite(v) && v >= lo; };
-  if (!finite_at_least(p.phi_depth, 0.f) || !finite_at_least(p.phi_normal, 0.f) ||
-      !(finite_at_least(p.phi_color, 0.f) && p.phi_color > 0.f))
-    throw UsageError("--phi-depth and --phi-normal must be finite and >= 0, --phi-color > 0");
   GaussianParams& g = c.gaussian;
   g.sigma = o.get_float("sigma", g.sigma);
   g.radius = o.get_int("radius", g.radius, 0, 1024);
@@ -104,6 +98,7 @@ void read_method_params(const Options& o, DenoiserConfig& c) {
   j.alpha = o.get_float("jbf-alpha", j.alpha);
   j.clamp_k = o.get_float("jbf-clamp-k", j.clamp_k);
   try {
+    p.validate();
     g.validate();
     v.validate();
     j.validate();

@@ -53,8 +53,11 @@ constexpr double kReproject = 22 + 4 * (15 + 13) + 7 + 30;  // 171
 // Without history (background, disocclusion): the blend with alpha = 1, luminance 5, color 9,
 // moments 7, variance 3, length and alpha selects 2.
 constexpr double kReprojectNoHistory = 26;
-// demodulate.h: three sanitize tests 12, albedo clamp 3, three divisions 3.
-constexpr double kDemodulate = 18;
+// core/sanitize.h on a clean pixel (every mode): range tests of color 6, albedo 6, motion 4,
+// the guides' bounds 12, the normal's squared length 5 and its range 2.
+constexpr double kSanitize = 35;
+// demodulate.h: albedo clamp 3, three divisions 3.
+constexpr double kDemodulate = 6;
 // variance.h on the steady-state path: the history and surface tests, then a copy.
 constexpr double kVarianceSteady = 2;
 // remodulate.h: albedo clamp 3, product 3 (plus 3 adds with emission).
@@ -76,10 +79,23 @@ bool tap_in_range(const SvgfParams& p) {
   return p.feedback_tap >= 0 && p.feedback_tap < p.iterations;
 }
 
+// The sanitize stage reads every input plane the pipeline uses and, on clean input, writes
+// nothing (the same kernel in both modes).
+StageCost sanitize_cost(bool emission) {
+  const double e = emission ? 3 : 0;
+  StageCost c;
+  c.read = (3 + 3 + e + 3 + 1 + 2 + 2) * kFloat;
+  c.ops = kSanitize + (emission ? 6 : 0);
+  c.planes = "R color 3, albedo 3, emission 3 (if any), normal 3, depth, gradient 2, motion 2";
+  return c;
+}
+
 StageCost exact_cost(Stage stage, const SvgfParams& p, bool emission, bool surface) {
   const double e = emission ? 3 : 0;  // emission planes, when the frames have them
   StageCost c;
   switch (stage) {
+    case Stage::Sanitize:
+      return sanitize_cost(emission);
     case Stage::Demodulate:
       c.read = (3 + 3 + e) * kFloat;  // color, albedo, emission
       c.written = 3 * kFloat;         // illumination
@@ -138,6 +154,8 @@ StageCost fast_cost(Stage stage, const SvgfParams& p, bool emission, bool surfac
   const double e = emission ? 3 : 0;
   StageCost c;
   switch (stage) {
+    case Stage::Sanitize:
+      return sanitize_cost(emission);
     case Stage::Demodulate:  // demodulate + reproject + guide packing, one kernel
       // The illumination comes back from the thread's own write. Background pixels read depth
       // and normal only (to pack them), besides color and albedo.

@@ -25,11 +25,12 @@ namespace svgf::bench {
 
 // SVGF's stages (methods/svgf/stages.h) and the CUDA engine's transfers, as the cost model
 // indexes them.
-enum class Stage : int { Demodulate = 0, Reproject, Variance, Atrous, Feedback, Remodulate,
-                         Upload, Download, Count };
+enum class Stage : int { Sanitize = 0, Demodulate, Reproject, Variance, Atrous, Feedback,
+                         Remodulate, Upload, Download, Count };
 constexpr int kStageCount = static_cast<int>(Stage::Count);
 inline const char* stage_name(Stage s) {
   switch (s) {
+    case Stage::Sanitize: return kSanitizeStage;
     case Stage::Demodulate: return svgf_stage::kDemodulate;
     case Stage::Reproject: return svgf_stage::kReproject;
     case Stage::Variance: return svgf_stage::kVariance;

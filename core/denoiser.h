@@ -10,7 +10,9 @@
 
 #include "core/frame.h"
 #include "core/image.h"
+#include "core/sanitize.h"
 #include "core/stage_times.h"
+#include "core/tallies.h"
 
 namespace svgf {
 
@@ -32,11 +34,57 @@ struct EngineConfig {
   int block_y = 8;
 };
 
+// Pixels of one frame whose inputs the sanitize stage repaired, per kind (core/sanitize.h has
+// the rule for each).
+struct InputRepairs {
+  int64_t color = 0;     // a component NaN, Inf, negative or > kMaxRadiance: set to 0
+  int64_t albedo = 0;    // outside [0, 1]: clamped (NaN: 1)
+  int64_t emission = 0;  // as color
+  int64_t normal = 0;    // a surface normal of the wrong length: renormalized
+  int64_t surface = 0;   // bad depth, gradient, normal or position: made background
+  int64_t motion = 0;    // non-finite or huge: clamped off the image (no history)
+
+  static InputRepairs from(const Tallies& t) {
+    InputRepairs r;
+    r.color = t.count[bit(kRepairColor)];
+    r.albedo = t.count[bit(kRepairAlbedo)];
+    r.emission = t.count[bit(kRepairEmission)];
+    r.normal = t.count[bit(kRepairNormal)];
+    r.surface = t.count[bit(kRepairSurface)];
+    r.motion = t.count[bit(kRepairMotion)];
+    return r;
+  }
+  int64_t total() const { return color + albedo + emission + normal + surface + motion; }
+  InputRepairs& operator+=(const InputRepairs& o) {
+    color += o.color; albedo += o.albedo; emission += o.emission;
+    normal += o.normal; surface += o.surface; motion += o.motion;
+    return *this;
+  }
+
+ private:
+  static int bit(uint32_t repair) {
+    int b = 0;
+    while ((repair >> b) != 1u) ++b;
+    return b;
+  }
+};
+
 // What one denoise() call did.
 struct FrameReport {
   StageTimes times;
-  int64_t replaced_samples = 0;  // color samples that were NaN, Inf or negative (set to 0)
+  InputRepairs repairs;
+  int64_t replaced_samples = 0;  // pixels whose color was replaced (repairs.color)
 };
+
+// The report of the frame an engine has just finished (after the backend's finish()).
+template <class Engine>
+FrameReport frame_report(const Engine& engine) {
+  FrameReport r;
+  r.times = engine.times();
+  r.repairs = InputRepairs::from(engine.tallies());
+  r.replaced_samples = r.repairs.color;
+  return r;
+}
 
 // One denoiser per sequence: it owns the history. Frames must all have the first frame's size.
 class Denoiser {

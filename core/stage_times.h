@@ -12,6 +12,9 @@ namespace svgf {
 inline constexpr const char* kUploadStage = "upload";
 inline constexpr const char* kDownloadStage = "download";
 
+// Every method's first stage, run by the backend on the frame's inputs (core/sanitize.h).
+inline constexpr const char* kSanitizeStage = "sanitize";
+
 inline bool is_transfer_stage(const std::string& name) {
   return name == kUploadStage || name == kDownloadStage;
 }

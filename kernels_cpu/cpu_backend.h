@@ -1,7 +1,7 @@
 #pragma once
 // The CPU backend of a denoiser written once (methods/<method>/denoiser.h): the TBB engine,
 // host buffers, and a frame's inputs read in place. What a backend provides:
-//   Engine& engine()                       runs pixel kernels (run, run_counting), times stages
+//   Engine& engine()                       runs pixel kernels (run, run_tallying), times stages
 //   using Buffer; allocate(buffer, channels, what)  a planar float buffer of the frame's size
 //   set_method_planes(n)                   how many planes the method allocates (for errors)
 //   float* plane(buffer, c); RgbView rgb(buffer, first); Image read(buffer)
@@ -19,6 +19,8 @@
 #include "core/denoiser.h"
 #include "core/frame.h"
 #include "core/frame_inputs.h"
+#include "core/sanitize.h"
+#include "core/stage_times.h"
 #include "kernels_cpu/cpu_engine.h"
 
 namespace svgf::cpu {
@@ -56,14 +58,20 @@ class CpuBackend {
   RgbView rgb(Buffer& b, int first_plane = 0) const { return b.rgb(first_plane); }
   Image read(const Buffer& b) const { return b; }
 
-  // `position`: the method reads world positions (read in place: free here).
-  FrameInputs inputs(const Frame& f, bool position = false) const {
+  // The frame's inputs, sanitized (core/sanitize.h), as the stages read them: in place when the
+  // read-only scan finds nothing wrong (the common case: one read of the inputs), else a
+  // repaired copy. `position`: the method reads world positions (then they are checked too).
+  FrameInputs inputs(const Frame& f, bool position = false) {
+    SanitizeInputs scan{width_, input_planes(f, position), {}};
+    engine_.run_tallying(kSanitizeStage, scan, width_, height_);
     FrameInputs in;
     in.guides = f.guides();
     in.color = f.color.rgb();
     in.albedo = f.albedo.rgb();
     if (!f.emission.empty()) in.emission = f.emission.rgb();
     if (position) in.position = f.position.rgb();
+    if (engine_.tallies().any()) in = repaired_inputs(f, position);
+    current_guides_ = in.guides;
     return in;
   }
 
@@ -96,22 +104,106 @@ class CpuBackend {
   void finish(const Frame& f, Image&) {
     if (prev_planes_.empty()) return;  // no method here reads the previous guides
     const size_t n = f.color.pixel_count();
+    const GuideView& g = current_guides_;  // sanitized
     auto copy = [&](const float* src, int plane) {
       std::copy(src, src + n, prev_planes_.plane(plane));
     };
-    copy(f.depth.plane(0), 0);
-    copy(f.depth_gradient.plane(0), 1);
-    copy(f.depth_gradient.plane(1), 2);
-    for (int c = 0; c < 3; ++c) copy(f.normal.plane(c), 3 + c);
-    copy(f.motion.plane(0), 6);
-    copy(f.motion.plane(1), 7);
+    copy(g.depth, 0);
+    copy(g.depth_dx, 1);
+    copy(g.depth_dy, 2);
+    copy(g.normal.r, 3);
+    copy(g.normal.g, 4);
+    copy(g.normal.b, 5);
+    copy(g.motion_x, 6);
+    copy(g.motion_y, 7);
     prev_mesh_id_ = f.mesh_id;
   }
 
  private:
+  static InputPlanes input_planes(const Frame& f, bool position) {
+    InputPlanes p;
+    p.color = f.color.rgb();
+    p.albedo = f.albedo.rgb();
+    if (!f.emission.empty()) p.emission = f.emission.rgb();
+    p.normal = f.normal.rgb();
+    if (position) p.position = f.position.rgb();
+    p.depth = f.depth.plane(0);
+    p.depth_dx = f.depth_gradient.plane(0);
+    p.depth_dy = f.depth_gradient.plane(1);
+    p.motion_x = f.motion.plane(0);
+    p.motion_y = f.motion.plane(1);
+    return p;
+  }
+
+  // A copy of the frame's inputs with the bad pixels repaired (the same kernel, writing).
+  FrameInputs repaired_inputs(const Frame& f, bool position) {
+    enum : int { kColor = 0, kAlbedo = 3, kNormal = 6, kDepth = 9, kDepthDx, kDepthDy, kMotionX,
+                 kMotionY, kEmission = 14, kPosition = 17, kPlanes = 20 };
+    if (repaired_.width() != width_ || repaired_.height() != height_)
+      repaired_ = Image(width_, height_, kPlanes);
+    const size_t n = f.color.pixel_count();
+    auto copy = [&](const float* src, int plane) {
+      std::copy(src, src + n, repaired_.plane(plane));
+    };
+    for (int c = 0; c < 3; ++c) {
+      copy(f.color.plane(c), kColor + c);
+      copy(f.albedo.plane(c), kAlbedo + c);
+      copy(f.normal.plane(c), kNormal + c);
+      if (!f.emission.empty()) copy(f.emission.plane(c), kEmission + c);
+      if (position) copy(f.position.plane(c), kPosition + c);
+    }
+    copy(f.depth.plane(0), kDepth);
+    copy(f.depth_gradient.plane(0), kDepthDx);
+    copy(f.depth_gradient.plane(1), kDepthDy);
+    copy(f.motion.plane(0), kMotionX);
+    copy(f.motion.plane(1), kMotionY);
+
+    InputPlanesOut out;
+    out.color = repaired_.rgb(kColor);
+    out.albedo = repaired_.rgb(kAlbedo);
+    out.normal = repaired_.rgb(kNormal);
+    if (!f.emission.empty()) out.emission = repaired_.rgb(kEmission);
+    if (position) out.position = repaired_.rgb(kPosition);
+    out.depth = repaired_.plane(kDepth);
+    out.depth_dx = repaired_.plane(kDepthDx);
+    out.depth_dy = repaired_.plane(kDepthDy);
+    out.motion_x = repaired_.plane(kMotionX);
+    out.motion_y = repaired_.plane(kMotionY);
+    InputPlanes in;
+    in.color = out.color;
+    in.albedo = out.albedo;
+    in.emission = out.emission;
+    in.normal = out.normal;
+    in.position = out.position;
+    in.depth = out.depth;
+    in.depth_dx = out.depth_dx;
+    in.depth_dy = out.depth_dy;
+    in.motion_x = out.motion_x;
+    in.motion_y = out.motion_y;
+    engine_.run(kSanitizeStage, SanitizeInputs{width_, in, out}, width_, height_);
+
+    FrameInputs r;
+    r.guides.width = width_;
+    r.guides.height = height_;
+    r.guides.depth = out.depth;
+    r.guides.depth_dx = out.depth_dx;
+    r.guides.depth_dy = out.depth_dy;
+    r.guides.normal = out.normal;
+    r.guides.mesh_id = f.mesh_id.data();
+    r.guides.motion_x = out.motion_x;
+    r.guides.motion_y = out.motion_y;
+    r.color = out.color;
+    r.albedo = out.albedo;
+    r.emission = out.emission;
+    r.position = out.position;
+    return r;
+  }
+
   CpuEngine engine_;
   int width_ = 0, height_ = 0;
   Image prev_planes_;  // depth, depth_dx, depth_dy, normal xyz, motion xy
+  Image repaired_;     // the inputs of a frame that needed repairs
+  GuideView current_guides_;
   std::vector<uint32_t> prev_mesh_id_;
 };
 

@@ -9,6 +9,7 @@
 #include <tbb/task_arena.h>
 
 #include "core/stage_times.h"
+#include "core/tallies.h"
 #include "kernels_cpu/parallel_for.h"
 
 namespace svgf::cpu {
@@ -35,19 +36,21 @@ class CpuEngine {
     times_.add(stage, elapsed_ms(t0));
   }
 
+  // For kernels returning a bit mask: per-bit pixel counts, added to tallies().
   template <class Kernel>
-  void run_counting(const char* stage, const Kernel& kernel, int width, int height) {
+  void run_tallying(const char* stage, const Kernel& kernel, int width, int height) {
     const auto t0 = std::chrono::steady_clock::now();
-    int64_t n = 0;
-    arena_.execute([&] { n = count_pixels(width, height, kernel); });
-    counted_ += n;
+    Tallies t;
+    arena_.execute([&] { t = tally_pixels(width, height, kernel); });
+    tallies_ += t;
     times_.add(stage, elapsed_ms(t0));
   }
 
-  // Per-frame bookkeeping: cleared by begin_frame().
-  void begin_frame() { times_.clear(); counted_ = 0; }
+  // Per-frame bookkeeping: cleared by begin_frame(). The CPU's tallies are current as soon as
+  // run_tallying returns; CUDA's only after the frame.
+  void begin_frame() { times_.clear(); tallies_ = Tallies{}; }
   const StageTimes& times() const { return times_; }
-  int64_t counted() const { return counted_; }
+  const Tallies& tallies() const { return tallies_; }
 
  private:
   static double elapsed_ms(std::chrono::steady_clock::time_point t0) {
@@ -56,7 +59,7 @@ class CpuEngine {
   }
   tbb::task_arena arena_;
   StageTimes times_;
-  int64_t counted_ = 0;
+  Tallies tallies_;
 };
 
 }  // namespace svgf::cpu

@@ -8,6 +8,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
+#include "core/tallies.h"
 #include "kernels_cpu/ieee_guard.h"
 
 namespace svgf::cpu {
@@ -36,6 +37,23 @@ int64_t count_pixels(int width, int height, const Kernel& kernel) {
         return count;
       },
       [](int64_t a, int64_t b) { return a + b; });
+}
+
+// For kernels returning a bit mask (uint32_t): how many pixels set each bit.
+template <class Kernel>
+Tallies tally_pixels(int width, int height, const Kernel& kernel) {
+  return tbb::parallel_reduce(
+      tbb::blocked_range<int>(0, height, kRowsPerTask), Tallies{},
+      [&](const tbb::blocked_range<int>& rows, Tallies t) {
+        ScopedIeeeFloat ieee;
+        for (int y = rows.begin(); y != rows.end(); ++y)
+          for (int x = 0; x < width; ++x) {
+            const uint32_t mask = kernel(x, y);
+            if (mask != 0u) t.add_mask(mask);
+          }
+        return t;
+      },
+      [](Tallies a, const Tallies& b) { return a += b; });
 }
 
 }  // namespace svgf::cpu

@@ -10,6 +10,8 @@
 #include "core/denoiser.h"
 #include "core/frame.h"
 #include "core/frame_inputs.h"
+#include "core/sanitize.h"
+#include "core/stage_times.h"
 #include "kernels_cuda/cuda_engine.h"
 #include "kernels_cuda/cuda_handles.h"
 #include "kernels_cuda/device_array.h"
@@ -122,11 +124,6 @@ class CudaBackend {
     engine_.mark(kUploadStage);
     inputs_[slot_].upload_async(staging, (emission ? kInputPlanes : kRequiredPlanes) * n,
                                 engine_.stream());
-    FrameInputs f;
-    f.guides = guides(slot_);
-    f.color = rgb(inputs_[slot_], kColor);
-    f.albedo = rgb(inputs_[slot_], kAlbedo);
-    if (emission) f.emission = rgb(inputs_[slot_], kEmission);
     if (position) {
       if (position_.size() != 3 * n) {
         allocate(position_, 3, "world positions");
@@ -134,8 +131,14 @@ class CudaBackend {
       }
       std::memcpy(staging_position_.get(), in.position.plane(0), 3 * n * sizeof(float));
       position_.upload_async(staging_position_.get(), 3 * n, engine_.stream());
-      f.position = rgb(position_, 0);
     }
+    FrameInputs f;
+    f.guides = guides(slot_);
+    f.color = rgb(inputs_[slot_], kColor);
+    f.albedo = rgb(inputs_[slot_], kAlbedo);
+    if (emission) f.emission = rgb(inputs_[slot_], kEmission);
+    if (position) f.position = rgb(position_, 0);
+    sanitize(f, emission, position);
     return f;
   }
   GuideView previous_guides() const { return guides(1 - slot_); }
@@ -153,6 +156,34 @@ class CudaBackend {
   }
 
  private:
+  // The sanitize stage (core/sanitize.h), in place on the uploaded planes: a clean pixel is
+  // only read.
+  void sanitize(const FrameInputs& f, bool emission, bool position) {
+    InputPlanesOut out;
+    out.color = rgb(inputs_[slot_], kColor);
+    out.albedo = rgb(inputs_[slot_], kAlbedo);
+    if (emission) out.emission = rgb(inputs_[slot_], kEmission);
+    out.normal = rgb(inputs_[slot_], kNormal);
+    if (position) out.position = rgb(position_, 0);
+    out.depth = plane(inputs_[slot_], kDepth);
+    out.depth_dx = plane(inputs_[slot_], kDepthDx);
+    out.depth_dy = plane(inputs_[slot_], kDepthDy);
+    out.motion_x = plane(inputs_[slot_], kMotionX);
+    out.motion_y = plane(inputs_[slot_], kMotionY);
+    InputPlanes in;
+    in.color = f.color;
+    in.albedo = f.albedo;
+    in.emission = f.emission;
+    in.normal = out.normal;
+    in.position = f.position;
+    in.depth = out.depth;
+    in.depth_dx = out.depth_dx;
+    in.depth_dy = out.depth_dy;
+    in.motion_x = out.motion_x;
+    in.motion_y = out.motion_y;
+    engine_.run_tallying(kSanitizeStage, SanitizeInputs{width_, in, out}, width_, height_);
+  }
+
   // Planes of one frame's upload, in order; mesh_id travels as raw 32-bit words. The optional
   // emission comes last, so a frame without it uploads kRequiredPlanes only.
   enum InputPlane : int {

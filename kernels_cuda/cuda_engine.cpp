@@ -2,17 +2,20 @@
 
 namespace svgf::cuda {
 
-CudaEngine::CudaEngine(LaunchShape shape) : shape_(shape), counter_(1) {
-  counter_host_.resize(1, "the replaced-sample count");
+// counter_[b]: run_tallying's count of bit b.
+constexpr size_t kCounters = kTallyBits;
+
+CudaEngine::CudaEngine(LaunchShape shape) : shape_(shape), counter_(kCounters) {
+  counter_host_.resize(kCounters, "the frame's counters");
 }
 
 void CudaEngine::begin_frame() {
   marks_.clear();
   times_.clear();
-  counted_ = 0;
-  SVGF_CUDA_CHECK(
-      cudaMemsetAsync(counter_.get(), 0, sizeof(unsigned long long), stream_.get()),
-      "cudaMemsetAsync of the replaced-sample counter");
+  tallies_ = Tallies{};
+  SVGF_CUDA_CHECK(cudaMemsetAsync(counter_.get(), 0, kCounters * sizeof(unsigned long long),
+                                  stream_.get()),
+                  "cudaMemsetAsync of the frame's counters");
 }
 
 void CudaEngine::mark(const char* stage) {
@@ -23,9 +26,10 @@ void CudaEngine::mark(const char* stage) {
 }
 
 void CudaEngine::end_frame() {
-  SVGF_CUDA_CHECK(cudaMemcpyAsync(counter_host_.get(), counter_.get(), sizeof(unsigned long long),
-                                  cudaMemcpyDeviceToHost, stream_.get()),
-                  "download of the replaced-sample count");
+  SVGF_CUDA_CHECK(cudaMemcpyAsync(counter_host_.get(), counter_.get(),
+                                  kCounters * sizeof(unsigned long long), cudaMemcpyDeviceToHost,
+                                  stream_.get()),
+                  "download of the frame's counters");
   if (events_.size() <= marks_.size()) events_.emplace_back();
   const cudaEvent_t last = events_[marks_.size()].get();
   SVGF_CUDA_CHECK(cudaEventRecord(last, stream_.get()), "cudaEventRecord at the frame's end");
@@ -42,7 +46,8 @@ void CudaEngine::end_frame() {
                     "cudaEventElapsedTime");
     times_.add(marks_[i], static_cast<double>(ms));
   }
-  counted_ = static_cast<int64_t>(*counter_host_.get());
+  for (int b = 0; b < kTallyBits; ++b)
+    tallies_.count[b] = static_cast<int64_t>(counter_host_.get()[b]);
 }
 
 }  // namespace svgf::cuda

@@ -38,13 +38,31 @@ __global__ void counting_pixel_kernel(const K k, int width, int height,
   device::count_block(flag, count);
 }
 
-// Stream-ordered launch; `count` (device memory) set: a counting kernel. Throws CudaError
+// For kernels returning a bit mask: per-bit counts into counts[0 .. kTallyBits).
+template <class K>
+__global__ void tallying_pixel_kernel(const K k, int width, int height,
+                                      unsigned long long* counts) {
+  const int x = device::pixel_x();
+  const int y = device::pixel_y();
+  const uint32_t mask = x < width && y < height ? k(x, y) : 0u;
+  device::tally_block(mask, counts);
+}
+
+// Stream-ordered launch; `count` (device memory) set: a counting kernel (bool: one count;
+// uint32_t: kTallyBits counts). Throws CudaError
 // naming `what` when the launch is refused.
 template <class K>
 void launch(const K& k, int width, int height, LaunchShape shape, cudaStream_t stream,
             const char* what, unsigned long long* count = nullptr) {
   if (width <= 0 || height <= 0) return;
   const LaunchGeometry g = launch_geometry(width, height, shape);
+  if constexpr (std::is_same_v<decltype(k(0, 0)), uint32_t>) {
+    if (count) {
+      tallying_pixel_kernel<K><<<g.grid, g.block, 0, stream>>>(k, width, height, count);
+      check_launch(what, g);
+      return;
+    }
+  }
   if constexpr (std::is_same_v<decltype(k(0, 0)), bool>) {
     if (count) {
       counting_pixel_kernel<K><<<g.grid, g.block, 0, stream>>>(k, width, height, count);
@@ -63,7 +81,8 @@ void CudaEngine::run(const char* stage, const Kernel& kernel, int width, int hei
 }
 
 template <class Kernel>
-void CudaEngine::run_counting(const char* stage, const Kernel& kernel, int width, int height) {
+void CudaEngine::run_tallying(const char* stage, const Kernel& kernel, int width, int height) {
+  static_assert(std::is_same_v<decltype(kernel(0, 0)), uint32_t>, "a tallying kernel returns a mask");
   mark(stage);
   launch(kernel, width, height, shape_, stream_.get(), stage, counter_.get());
 }

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The GPU checks of docs/cuda.md, on a machine with a CUDA device, from the repository root:
 # the full GPU test binary, the CUDA variants (cuda, cuda-fast) of every test body of the stage,
-# pipeline and OpenCV test binaries (tests/test_device.h), compute-sanitizer memcheck and
-# racecheck on the GPU tests' reduced mode and the stage tests, and (when svgf-bench bundles
+# pipeline and OpenCV test binaries (tests/test_device.h), compute-sanitizer memcheck, racecheck
+# and initcheck on the GPU tests' reduced mode, the stage tests and the bad-input pipeline
+# tests, and (when svgf-bench bundles
 # are given) the 1080p speed of this build against a baseline build, in one sitting.
 # Bundles made on the build machine with
 #   ../shared/gpu/bundle .gpu/tests build/tests/svgf_gpu_tests build/tests/svgf_stage_tests \
@@ -41,8 +42,8 @@ done
 
 # The bundle's libraries, unpacked by the runs above, for the sanitizer to start the binary.
 lib=/tmp/bundle-runtime-$(md5sum .gpu/tests/runtime.tar.xz | cut -c1-12)
-rc_memcheck=-1 rc_racecheck=-1
-for tool in memcheck racecheck; do
+rc_memcheck=-1 rc_racecheck=-1 rc_initcheck=-1
+for tool in memcheck racecheck initcheck; do
   extra=()
   [ "$tool" = memcheck ] && extra=(--leak-check full)
   LD_LIBRARY_PATH="$lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" timeout 200 \
@@ -54,11 +55,20 @@ for tool in memcheck racecheck; do
     .gpu/tests/bin/svgf_stage_tests "[cuda]" >"$logs/${tool}_stages.txt" 2>&1
   rc2=$?
   [ $rc -eq 0 ] && rc=$rc2
-  [ "$tool" = memcheck ] && rc_memcheck=$rc || rc_racecheck=$rc
+  LD_LIBRARY_PATH="$lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" timeout 300 \
+    "$sanitizer" --tool "$tool" "${extra[@]}" --error-exitcode 99 \
+    .gpu/tests/bin/svgf_pipeline_tests "[cuda][bad-input]" >"$logs/${tool}_bad_input.txt" 2>&1
+  rc3=$?
+  [ $rc -eq 0 ] && rc=$rc3
+  case $tool in
+    memcheck) rc_memcheck=$rc ;;
+    racecheck) rc_racecheck=$rc ;;
+    initcheck) rc_initcheck=$rc ;;
+  esac
   grep -E "ERROR SUMMARY|RACECHECK SUMMARY|LEAK SUMMARY|test cases|summary:" \
-    "$logs/$tool.txt" "$logs/${tool}_stages.txt"
+    "$logs/$tool.txt" "$logs/${tool}_stages.txt" "$logs/${tool}_bad_input.txt"
 done
-echo "exit codes: gpu tests $rc_tests, device variants $rc_devices, memcheck $rc_memcheck, racecheck $rc_racecheck"
+echo "exit codes: gpu tests $rc_tests, device variants $rc_devices, memcheck $rc_memcheck, racecheck $rc_racecheck, initcheck $rc_initcheck"
 fi
 [ "$what" = tests ] && exit 0
 

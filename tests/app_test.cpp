@@ -139,6 +139,13 @@ TEST_CASE("svgf denoise: bad arguments are usage errors found before any output"
       {{"--exposure", "-1"}, "--exposure"},
       {{"--exposure", "0"}, "--exposure"},
       {{"--exposure", "inf"}, "--exposure"},
+      // Each parameter with its range (issue 15, item 5: these were accepted, some gave NaN).
+      {{"--phi-color", "-1"}, "--phi-color must be finite and > 0, got -1"},
+      {{"--phi-normal", "inf"}, "--phi-normal must be finite and >= 0"},
+      {{"--phi-normal", "-128"}, "--phi-normal must be finite and >= 0"},
+      {{"--phi-depth", "-1"}, "--phi-depth must be finite and >= 0"},
+      {{"--alpha", "0"}, "--alpha must be in (0, 1]"},
+      {{"--method", "gaussian", "--sigma", "0"}, "--sigma must be in [0.001, 256]"},
   };
   for (const auto& [flags, names] : cases) {
     std::vector<std::string> args = {in.string(), out.string()};

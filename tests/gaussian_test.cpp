@@ -105,7 +105,6 @@ void bad_samples_replaced(const TestDevice& device) {
   REQUIRE(d->last_report().replaced_samples == 3);
   for (float v : out.data()) REQUIRE(std::isfinite(v));
   REQUIRE(out.at(3, 4, 0) < 1.f);  // the replaced 0 pulled its neighbourhood down
-  REQUIRE(d->read_buffer("sanitized").at(3, 4, 0) == 0.f);
 }
 
 }  // namespace

@@ -228,7 +228,7 @@ void bad_samples_replaced(const TestDevice& d) {
     den->denoise(f, out);
     REQUIRE(den->last_report().replaced_samples == 3);
     for (float v : out.data()) REQUIRE(std::isfinite(v));
-    REQUIRE(den->read_buffer(jbf_buffer::kSanitized).at(3, 4, 0) == 0.f);
+    REQUIRE(den->last_report().repairs.total() == 3);
   }
 }
 

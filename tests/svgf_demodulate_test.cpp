@@ -21,9 +21,9 @@ namespace {
 void constant_stays_constant(const TestDevice& d) {
   Image color(19, 7, 3, 0.75f), albedo(19, 7, 3, 0.3f), illum(19, 7, 3, -1.f);
   StageRunner r(d);
-  REQUIRE(r.run(DemodulateKernel{19, r.rgb(std::as_const(color)), r.rgb(std::as_const(albedo)),
-                                 {}, r.rgb(illum), 1e-3f},
-                19, 7) == 0);
+  r.run(DemodulateKernel{19, r.rgb(std::as_const(color)), r.rgb(std::as_const(albedo)), {},
+                         r.rgb(illum), 1e-3f},
+        19, 7);
   for (float v : illum.data()) REQUIRE(v == 0.75f / 0.3f);
 }
 
@@ -36,25 +36,6 @@ void albedo_clamped(const TestDevice& d) {
                          r.rgb(illum), 1e-3f},
         4, 1);
   for (float v : illum.data()) REQUIRE(v == 2.f / 1e-3f);
-}
-
-void bad_color_counted(const TestDevice& d) {
-  Image color(5, 2, 3), albedo(5, 2, 3, 0.5f), illum(5, 2, 3);
-  test::fill_uniform(color, 0.1f, 4.f, 7);
-  color.at(0, 0, 0) = std::numeric_limits<float>::quiet_NaN();
-  color.at(3, 0, 2) = std::numeric_limits<float>::infinity();
-  color.at(4, 1, 1) = -0.25f;
-  color.at(4, 1, 2) = -std::numeric_limits<float>::infinity();  // same pixel: counted once
-  StageRunner r(d);
-  REQUIRE(r.run(DemodulateKernel{5, r.rgb(std::as_const(color)), r.rgb(std::as_const(albedo)),
-                                 {}, r.rgb(illum), 1e-3f},
-                5, 2) == 3);
-  CHECK(illum.at(0, 0, 0) == 0.f);
-  CHECK(illum.at(0, 0, 1) == color.at(0, 0, 1) / 0.5f);  // the other channels are kept
-  CHECK(illum.at(3, 0, 2) == 0.f);
-  CHECK(illum.at(4, 1, 1) == 0.f);
-  CHECK(illum.at(4, 1, 2) == 0.f);
-  for (float v : illum.data()) REQUIRE(std::isfinite(v));
 }
 
 void remodulate_undoes_demodulate(const TestDevice& d) {
@@ -93,8 +74,6 @@ SVGF_BACKEND_TEST("demodulate: a constant image stays constant", "[demodulate]",
                   constant_stays_constant)
 SVGF_BACKEND_TEST("demodulate: zero and NaN albedo are clamped, never divided by",
                   "[demodulate]", albedo_clamped)
-SVGF_BACKEND_TEST("demodulate: NaN, Inf and negative color are replaced by 0 and counted",
-                  "[demodulate]", bad_color_counted)
 SVGF_BACKEND_TEST("remodulate undoes demodulate to within an ulp", "[demodulate][remodulate]",
                   remodulate_undoes_demodulate)
 SVGF_BACKEND_TEST("demodulate takes the emission out and remodulate puts it back",

@@ -56,14 +56,27 @@ TEST_CASE("test device: names, configurations and tolerances", "[harness]") {
   REQUIRE(c.mode == Mode::Fast);
 }
 
+namespace {
+// Halves a plane in place; true where the value was above 1 (a counting kernel).
+struct HalveAboveOne {
+  float* v;
+  int width;
+  SVGF_HD bool operator()(int x, int y) const {
+    const int i = y * width + x;
+    const bool above = v[i] > 1.f;
+    v[i] = v[i] * 0.5f;
+    return above;
+  }
+};
+}  // namespace
+
 TEST_CASE("test device: on the CPU the runner runs on the images and counts", "[harness]") {
-  Image color(5, 3, 3, 1.f), albedo(5, 3, 3, 0.5f), illum(5, 3, 3, -1.f);
-  color.at(2, 1, 0) = std::numeric_limits<float>::infinity();
+  Image im(5, 3, 1, 1.f);
+  im.at(2, 1, 0) = 4.f;
   StageRunner r(kCpu);
-  const ConstRgbView c = r.rgb(std::as_const(color));
-  REQUIRE(c.r == color.plane(0));  // the host planes themselves
-  REQUIRE(r.run(DemodulateKernel{5, c, r.rgb(std::as_const(albedo)), {}, r.rgb(illum), 1e-3f},
-                5, 3) == 1);
-  REQUIRE(illum.at(0, 0, 0) == 2.f);
-  REQUIRE(illum.at(2, 1, 0) == 0.f);
+  float* p = r.plane(im);
+  REQUIRE(p == im.plane(0));  // the host plane itself
+  REQUIRE(r.run(HalveAboveOne{p, 5}, 5, 3) == 1);
+  REQUIRE(im.at(0, 0, 0) == 0.5f);
+  REQUIRE(im.at(2, 1, 0) == 2.f);
 }

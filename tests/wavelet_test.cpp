@@ -254,15 +254,16 @@ void bad_samples_replaced(const TestDevice& d) {
   f.color.at(3, 4, 0) = std::numeric_limits<float>::quiet_NaN();
   f.color.at(5, 5, 1) = std::numeric_limits<float>::infinity();
   f.color.at(8, 2, 2) = -2.f;
-  f.albedo.at(9, 9, 1) = std::numeric_limits<float>::quiet_NaN();  // taken as 0 + epsilon
+  f.albedo.at(9, 9, 1) = std::numeric_limits<float>::quiet_NaN();  // sanitized to 1
   auto den = wavelet_on(d, WaveletParams());
   Image out;
   den->denoise(f, out);
   REQUIRE(den->last_report().replaced_samples == 3);
+  REQUIRE(den->last_report().repairs.albedo == 1);
   for (float v : out.data()) REQUIRE(std::isfinite(v));
   const Image illum = den->read_buffer(wavelet_buffer::kIllumination);
   REQUIRE(illum.at(3, 4, 0) == 0.f);
-  REQUIRE(illum.at(9, 9, 1) == Approx(0.5 / 0.01).epsilon(1e-6));
+  REQUIRE(illum.at(9, 9, 1) == Approx(0.5 / 1.01).epsilon(1e-6));
 }
 
 }  // namespace
@@ -301,7 +302,8 @@ TEST_CASE("wavelet: same bits on 1 and 2 threads; stages, buffers, defaults and 
   two->denoise(noisy, b);
   test::require_identical(a, b, "1 vs 2 threads");
   REQUIRE(two->stages() ==
-          std::vector<std::string>{"demodulate", "spread", "deviation", "atrous", "remodulate"});
+          std::vector<std::string>{"sanitize", "demodulate", "spread", "deviation", "atrous",
+                                   "remodulate"});
   REQUIRE(two->last_report().times["atrous"] > 0);
   REQUIRE_THROWS_WITH(two->read_buffer("moments"), Catch::Contains("no debug buffer 'moments'"));
   // The documented defaults (docs/wavelet.md: Nagi's gui.hpp and the CIS 565 filter size 80).

@@ -1,8 +1,8 @@
 #pragma once
 // The Gaussian baseline behind the Denoiser interface, written once over a backend
 // (kernels_cpu/cpu_backend.h). A frame's data flow:
-//   sanitize  color -> scratch, bad samples replaced by 0 and counted (core/sanitize.h)
-//   blur_x    scratch -> blurred, along rows
+//   sanitize  the backend's: bad input repaired and counted (core/sanitize.h)
+//   blur_x    color -> blurred, along rows
 //   blur_y    blurred -> output, along columns
 #include <string>
 #include <string_view>
@@ -10,24 +10,21 @@
 
 #include "core/denoiser.h"
 #include "core/frame_inputs.h"
-#include "core/sanitize.h"
 #include "methods/gaussian/blur.h"
 #include "methods/gaussian/params.h"
 
 namespace svgf {
 
 namespace gaussian_stage {
-inline constexpr const char* kSanitize = "sanitize";
 inline constexpr const char* kBlurX = "blur_x";
 inline constexpr const char* kBlurY = "blur_y";
 }  // namespace gaussian_stage
 
 template <class Arith, class Engine>
-void run_gaussian_frame(Engine& engine, ConstRgbView color, RgbView scratch, RgbView blurred,
-                        RgbView output, int w, int h, const GaussianParams& p) {
+void run_gaussian_frame(Engine& engine, ConstRgbView color, RgbView blurred, RgbView output, int w,
+                        int h, const GaussianParams& p) {
   namespace stage = gaussian_stage;
-  engine.run_counting(stage::kSanitize, SanitizeKernel{w, color, scratch}, w, h);
-  GaussianPass<Arith> pass{w, h, scratch, blurred, 1, 0, p.effective_radius(),
+  GaussianPass<Arith> pass{w, h, color, blurred, 1, 0, p.effective_radius(),
                            -1.f / (2.f * p.sigma * p.sigma)};
   engine.run(stage::kBlurX, pass, w, h);
   pass.in = blurred;
@@ -43,53 +40,46 @@ class GaussianDenoiser final : public Denoiser {
   GaussianDenoiser(const GaussianParams& params, const EngineConfig& config)
       : params_(params), mode_(config.mode), backend_(config) {
     params_.validate();
-    backend_.set_method_planes(3 + 3);
+    backend_.set_method_planes(3);
   }
 
   void denoise(const Frame& in, Image& out) override {
     check_frame_consistent(in);
-    if (backend_.resize(in.width(), in.height())) {
-      backend_.allocate(scratch_, 3, "sanitized color");
-      backend_.allocate(blurred_, 3, "blurred rows");
-    }
+    if (backend_.resize(in.width(), in.height())) backend_.allocate(blurred_, 3, "blurred rows");
     auto& engine = backend_.engine();
     engine.begin_frame();
     const FrameInputs cur = backend_.inputs(in);
     const RgbView output = backend_.output(out);
 #if defined(__CUDACC__)
     if (mode_ == Mode::Fast)
-      run_gaussian_frame<FastArith>(engine, cur.color, backend_.rgb(scratch_),
-                                    backend_.rgb(blurred_), output, in.width(), in.height(),
-                                    params_);
+      run_gaussian_frame<FastArith>(engine, cur.color, backend_.rgb(blurred_), output,
+                                    in.width(), in.height(), params_);
     else
 #endif
-      run_gaussian_frame<ExactArith>(engine, cur.color, backend_.rgb(scratch_),
-                                     backend_.rgb(blurred_), output, in.width(), in.height(),
-                                     params_);
+      run_gaussian_frame<ExactArith>(engine, cur.color, backend_.rgb(blurred_), output,
+                                     in.width(), in.height(), params_);
     backend_.finish(in, out);
-    report_.times = engine.times();
-    report_.replaced_samples = engine.counted();
+    report_ = frame_report(engine);
   }
 
   void reset() override {}  // no history
   const FrameReport& last_report() const override { return report_; }
   std::string description() const override { return "gaussian " + backend_.description(); }
   std::vector<std::string> stages() const override {
-    return {gaussian_stage::kSanitize, gaussian_stage::kBlurX, gaussian_stage::kBlurY};
+    return {kSanitizeStage, gaussian_stage::kBlurX, gaussian_stage::kBlurY};
   }
-  std::vector<std::string> debug_buffers() const override { return {"sanitized", "blurred_x"}; }
+  std::vector<std::string> debug_buffers() const override { return {"blurred_x"}; }
   Image read_buffer(std::string_view name) const override {
-    if (name != "sanitized" && name != "blurred_x")
-      throw unknown_buffer("gaussian", name, debug_buffers());
+    if (name != "blurred_x") throw unknown_buffer("gaussian", name, debug_buffers());
     if (backend_.width() == 0) return Image();
-    return backend_.read(name == "sanitized" ? scratch_ : blurred_);
+    return backend_.read(blurred_);
   }
 
  private:
   GaussianParams params_;
   Mode mode_;
   Backend backend_;
-  typename Backend::Buffer scratch_, blurred_;
+  typename Backend::Buffer blurred_;
   FrameReport report_;
 };
 

@@ -22,8 +22,10 @@ struct GaussianParams {
   }
   // std::invalid_argument naming the parameter.
   void validate() const {
-    if (!(sigma > 0.f && sigma <= 256.f))
-      throw std::invalid_argument("gaussian: --sigma must be in (0, 256], got " +
+    // Below 1e-3 px the kernel is a copy, and far below, 2 sigma^2 underflows to 0 and the
+    // centre weight exp(-0 / 0) is NaN.
+    if (!(sigma >= 1e-3f && sigma <= 256.f))
+      throw std::invalid_argument("gaussian: --sigma must be in [0.001, 256], got " +
                                   std::to_string(sigma));
     if (radius < 0 || radius > 1024)
       throw std::invalid_argument("gaussian: --radius must be in [0, 1024], got " +

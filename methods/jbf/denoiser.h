@@ -2,9 +2,10 @@
 // The joint bilateral filter (GAMES202 homework 5) behind the Denoiser interface, written once
 // over a backend (kernels_cpu/cpu_backend.h). A frame's data flow (the spatial filter; the
 // homework's temporal accumulation is not built yet, docs/jbf.md):
-//   sanitize  color -> sanitized, bad samples replaced by 0 and counted (core/sanitize.h)
-//   filter    full window: sanitized -> output, one pass of radius taps either side
-//   atrous    or: sanitized -> signal 0 -> signal 1 -> ... -> output, 5x5 taps at 1, 2, 4, ...
+//   sanitize  the backend's: bad input repaired and counted (core/sanitize.h)
+//   filter    full window: color -> filtered, one pass of radius taps either side
+//   atrous    or: color -> signal 0 -> signal 1 -> ... -> filtered, 5x5 taps at 1, 2, 4, ...
+//   temporal  filtered + the reprojected, clamped history -> accumulated = output
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -12,7 +13,6 @@
 
 #include "core/denoiser.h"
 #include "core/frame_inputs.h"
-#include "core/sanitize.h"
 #include "methods/jbf/filter.h"
 #include "methods/jbf/params.h"
 #include "methods/jbf/temporal.h"
@@ -20,14 +20,12 @@
 namespace svgf {
 
 namespace jbf_stage {
-inline constexpr const char* kSanitize = "sanitize";
 inline constexpr const char* kFilter = "filter";  // the full window
 inline constexpr const char* kAtrous = "atrous";  // the a-trous levels
 inline constexpr const char* kTemporal = "temporal";
 }  // namespace jbf_stage
 
 namespace jbf_buffer {
-inline constexpr const char* kSanitized = "sanitized";
 inline constexpr const char* kFiltered = "filtered";        // this frame's spatial result
 inline constexpr const char* kAccumulated = "accumulated";  // the history the next frame reads
 }  // namespace jbf_buffer
@@ -35,7 +33,6 @@ inline constexpr const char* kAccumulated = "accumulated";  // the history the n
 struct JbfFrameBuffers {
   FrameInputs in;          // with world positions
   GuideView prev_guides;   // the previous frame's
-  RgbView sanitized;
   RgbView signal[2];
   RgbView filtered;
   ConstRgbView prev_accumulated;
@@ -49,15 +46,14 @@ void run_jbf_frame(Engine& engine, const JbfFrameBuffers& b, const JbfParams& p,
   namespace stage = jbf_stage;
   const GuideView& g = b.in.guides;
   const int w = g.width, h = g.height;
-  engine.run_counting(stage::kSanitize, SanitizeKernel{w, b.in.color, b.sanitized}, w, h);
   const JbfScales scales = JbfScales::of(p);
   if (!p.atrous()) {
     engine.run(stage::kFilter,
-               JbfPass<Arith>{g, b.in.position, b.sanitized, b.filtered, p.radius, 1, false,
+               JbfPass<Arith>{g, b.in.position, b.in.color, b.filtered, p.radius, 1, false,
                               scales},
                w, h);
   } else {
-    ConstRgbView in = b.sanitized;
+    ConstRgbView in = b.in.color;
     for (int level = 0; level < p.levels; ++level) {
       const RgbView out = level + 1 == p.levels ? b.filtered : b.signal[level % 2];
       engine.run(stage::kAtrous,
@@ -85,7 +81,7 @@ class JbfDenoiser final : public Denoiser {
   JbfDenoiser(const JbfParams& params, const EngineConfig& config)
       : params_(params), mode_(config.mode), backend_(config) {
     params_.validate();
-    backend_.set_method_planes(3 + 3 + 6 + (params_.atrous() ? 6 : 0));
+    backend_.set_method_planes(3 + 6 + (params_.atrous() ? 6 : 0));
   }
 
   void denoise(const Frame& in, Image& out) override {
@@ -94,7 +90,6 @@ class JbfDenoiser final : public Denoiser {
       throw std::invalid_argument("frame " + std::to_string(in.index) +
                                   ": jbf needs the 'position' channel (world positions)");
     if (backend_.resize(in.width(), in.height())) {
-      backend_.allocate(sanitized_, 3, "jbf sanitized color");
       backend_.allocate(filtered_, 3, "jbf filtered color");
       for (int s = 0; s < 2; ++s) backend_.allocate(accumulated_[s], 3, "jbf accumulation");
       has_history_ = false;
@@ -108,7 +103,6 @@ class JbfDenoiser final : public Denoiser {
     JbfFrameBuffers b;
     b.in = backend_.inputs(in, /*position=*/true);
     b.prev_guides = backend_.previous_guides();
-    b.sanitized = backend_.rgb(sanitized_);
     b.filtered = backend_.rgb(filtered_);
     b.prev_accumulated = backend_.rgb(accumulated_[slot_]);
     b.accumulated = backend_.rgb(accumulated_[1 - slot_]);
@@ -126,8 +120,7 @@ class JbfDenoiser final : public Denoiser {
     backend_.finish(in, out);
     slot_ = 1 - slot_;
     has_history_ = true;
-    report_.times = engine.times();
-    report_.replaced_samples = engine.counted();
+    report_ = frame_report(engine);
   }
 
   void reset() override { has_history_ = false; }
@@ -138,16 +131,15 @@ class JbfDenoiser final : public Denoiser {
            backend_.description();
   }
   std::vector<std::string> stages() const override {
-    return {jbf_stage::kSanitize, params_.atrous() ? jbf_stage::kAtrous : jbf_stage::kFilter,
+    return {kSanitizeStage, params_.atrous() ? jbf_stage::kAtrous : jbf_stage::kFilter,
             jbf_stage::kTemporal};
   }
   std::vector<std::string> debug_buffers() const override {
-    return {jbf_buffer::kSanitized, jbf_buffer::kFiltered, jbf_buffer::kAccumulated};
+    return {jbf_buffer::kFiltered, jbf_buffer::kAccumulated};
   }
   Image read_buffer(std::string_view name) const override {
     const typename Backend::Buffer* buffer =
-        name == jbf_buffer::kSanitized     ? &sanitized_
-        : name == jbf_buffer::kFiltered    ? &filtered_
+        name == jbf_buffer::kFiltered      ? &filtered_
         : name == jbf_buffer::kAccumulated ? &accumulated_[slot_]  // written by the last frame
                                            : nullptr;
     if (!buffer) throw unknown_buffer("jbf", name, debug_buffers());
@@ -159,7 +151,7 @@ class JbfDenoiser final : public Denoiser {
   JbfParams params_;
   Mode mode_;
   Backend backend_;
-  typename Backend::Buffer sanitized_, filtered_, accumulated_[2], signal_[2];
+  typename Backend::Buffer filtered_, accumulated_[2], signal_[2];
   int slot_ = 0;  // accumulated_[slot_] is the history the next frame reads
   bool has_history_ = false;
   FrameReport report_;

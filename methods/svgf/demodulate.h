@@ -2,10 +2,9 @@
 // Stage 1: demodulate. Takes the emitted part out of the noisy color and divides the albedo
 // out of the rest, so that the filters smooth reflected illumination only: texture detail
 // survives (paper Sec. 4), and light sources, which are noise-free and far brighter than what
-// surrounds them, are not spread onto their neighbours (Falcor's SVGF does the same). Also the
-// gate that keeps bad samples out of the history: see sanitize_radiance.
+// surrounds them, are not spread onto their neighbours (Falcor's SVGF does the same). Bad
+// samples never reach it: the backend's sanitize stage (core/sanitize.h) runs first.
 #include "core/hd.h"
-#include "core/sanitize.h"
 #include "methods/svgf/params.h"
 #include "core/views.h"
 
@@ -14,7 +13,7 @@ namespace svgf {
 // Albedo clamped from below (NaN albedo clamps too, since max_f drops NaN).
 SVGF_HD Vec3 guarded_albedo(Vec3 albedo, float epsilon) { return max_v(albedo, epsilon); }
 
-// Reflected illumination: (color - emission) / albedo. Color is already sanitized; the
+// Reflected illumination: (color - emission) / albedo. The
 // difference is clamped at 0 because rounding in the renderer may leave it a hair negative.
 SVGF_HD Vec3 demodulated(Vec3 color, Vec3 emission, Vec3 albedo, float albedo_epsilon) {
   return max_v(color - emission, 0.f) / guarded_albedo(albedo, albedo_epsilon);
@@ -28,13 +27,10 @@ struct DemodulateKernel {
   RgbView illumination;
   float albedo_epsilon = 1e-3f;
 
-  // Returns true where a color sample was replaced (the drivers count these).
-  SVGF_HD bool operator()(int x, int y) const {
+  SVGF_HD void operator()(int x, int y) const {
     const int i = y * width + x;
-    bool replaced = false;
-    const Vec3 c = sanitize_radiance(color.load(i), replaced);
-    illumination.store(i, demodulated(c, emission.load_or_zero(i), albedo.load(i), albedo_epsilon));
-    return replaced;
+    illumination.store(i, demodulated(color.load(i), emission.load_or_zero(i), albedo.load(i),
+                                      albedo_epsilon));
   }
 };
 

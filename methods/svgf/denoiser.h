@@ -21,6 +21,7 @@ class SvgfDenoiser final : public Denoiser {
  public:
   SvgfDenoiser(const SvgfParams& params, const EngineConfig& config)
       : params_(params), mode_(config.mode), backend_(config) {
+    params_.validate();
     backend_.set_method_planes(2 * (3 + 2 + 1 + 4) + 3 + 4 + (mode_ == Mode::Fast ? 4 : 0));
   }
 
@@ -63,8 +64,7 @@ class SvgfDenoiser final : public Denoiser {
 
     slot_ = next;
     has_history_ = true;
-    report_.times = engine.times();
-    report_.replaced_samples = engine.counted();
+    report_ = frame_report(engine);
   }
 
   void reset() override { has_history_ = false; }

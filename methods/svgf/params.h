@@ -1,6 +1,10 @@
 #pragma once
 // Every tunable of the SVGF pipeline, with its default, in one place. Defaults follow NVIDIA
 // Falcor's SVGFPass (which follows Schied et al. 2017); docs/svgf.md lists where each comes from.
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
 #include "core/binomial.h"
 #include "core/hd.h"
 
@@ -38,6 +42,48 @@ struct SvgfParams {
   float phi_depth = 1.f;
   float variance_epsilon = 1e-4f;  // added under the square root of the luminance sigma
   float depth_gradient_floor = 1e-8f;
+
+  // std::invalid_argument naming the flag (or the member, for those without one) and its range.
+  // Any value accepted here keeps every weight finite (tests/bad_input_test.cpp).
+  void validate() const {
+    auto fail = [](const std::string& what) { throw std::invalid_argument("svgf: " + what); };
+    auto in_unit = [&](float v, const char* name) {  // (0, 1]
+      if (!(v > 0.f && v <= 1.f)) fail(std::string(name) + " must be in (0, 1], got " + std::to_string(v));
+    };
+    auto at_least = [&](float v, float lo, const char* name) {
+      if (!(std::isfinite(v) && v >= lo))
+        fail(std::string(name) + " must be finite and >= " + std::to_string(lo) + ", got " +
+             std::to_string(v));
+    };
+    if (iterations < 0 || iterations > 12)
+      fail("--iterations must be in [0, 12], got " + std::to_string(iterations));
+    // A tap at or past the last iteration feeds back the unfiltered accumulation, like -1.
+    if (feedback_tap < -1 || feedback_tap > 11)
+      fail("--feedback-tap must be in [-1, 11], got " + std::to_string(feedback_tap));
+    in_unit(alpha, "--alpha");
+    in_unit(moments_alpha, "--moments-alpha");
+    if (!(std::isfinite(phi_color) && phi_color > 0.f))
+      fail("--phi-color must be finite and > 0, got " + std::to_string(phi_color));
+    at_least(phi_normal, 0.f, "--phi-normal");
+    at_least(phi_depth, 0.f, "--phi-depth");
+    if (!(albedo_epsilon > 0.f && albedo_epsilon <= 1.f))
+      fail("albedo_epsilon must be in (0, 1], got " + std::to_string(albedo_epsilon));
+    if (history_cap < 1) fail("history_cap must be >= 1, got " + std::to_string(history_cap));
+    at_least(reproject_depth_gradient_scale, 0.f, "reproject_depth_gradient_scale");
+    at_least(reproject_depth_relative, 0.f, "reproject_depth_relative");
+    if (!(reproject_normal_cos >= -1.f && reproject_normal_cos <= 1.f))
+      fail("reproject_normal_cos must be in [-1, 1], got " + std::to_string(reproject_normal_cos));
+    at_least(reproject_min_weight, 0.f, "reproject_min_weight");
+    if (spatial_variance_radius < 0 || spatial_variance_radius > 16)
+      fail("spatial_variance_radius must be in [0, 16], got " +
+           std::to_string(spatial_variance_radius));
+    at_least(spatial_variance_phi_depth, 0.f, "spatial_variance_phi_depth");
+    if (!(std::isfinite(variance_epsilon) && variance_epsilon > 0.f))
+      fail("variance_epsilon must be finite and > 0, got " + std::to_string(variance_epsilon));
+    if (!(std::isfinite(depth_gradient_floor) && depth_gradient_floor > 0.f))
+      fail("depth_gradient_floor must be finite and > 0, got " +
+           std::to_string(depth_gradient_floor));
+  }
 };
 
 // Fixed numbers of the method, not tunables. Functions rather than constexpr arrays, because a

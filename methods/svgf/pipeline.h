@@ -1,8 +1,7 @@
 #pragma once
 // One SVGF frame, written once for every backend and mode. An Engine runs a pixel kernel over
 // the image wherever it lives: `engine.run(stage, kernel, width, height)` (kernel(x, y) per
-// pixel) and `engine.run_counting(stage, kernel, width, height)` (kernel returns bool; the
-// engine counts true results). The CPU engine loops with TBB, the CUDA engine launches; the
+// pixel). The CPU engine loops with TBB, the CUDA engine launches; the
 // Flavor (methods/svgf/flavors.h) picks exact or fast arithmetic and storage, and whether
 // stages are fused into one launch. The kernels and this data flow are the same code on every
 // backend, which is what makes exact mode bitwise.
@@ -119,18 +118,17 @@ void run_svgf_frame(Engine& engine, const SvgfFrameBuffers& b, const SvgfParams&
   using ConstSignal = typename Flavor::ConstSignal;
   const RemodulateSink remodulate{b.albedo, b.emission, b.output, p.albedo_epsilon};
 
-  // 1. (color - emission) / albedo -> illumination (bad samples replaced and counted).
+  // 1. (color - emission) / albedo -> illumination (the inputs are sanitized already).
   // 2. illumination + history -> accumulated color, moments and history length.
   //    Fused, the same thread reprojects the illumination it just wrote, and packs the guides.
   if constexpr (Flavor::kFused) {
-    engine.run_counting(stage::kDemodulate,
-                        then(demodulate_kernel_for(b, p),
-                             then(reproject_kernel_for(b, p, has_history),
-                                  PackGuidesKernel{b.guides,
-                                                   reinterpret_cast<Packed4*>(b.packed_guides)})),
-                        w, h);
+    engine.run(stage::kDemodulate,
+               then(demodulate_kernel_for(b, p),
+                    then(reproject_kernel_for(b, p, has_history),
+                         PackGuidesKernel{b.guides, reinterpret_cast<Packed4*>(b.packed_guides)})),
+               w, h);
   } else {
-    engine.run_counting(stage::kDemodulate, demodulate_kernel_for(b, p), w, h);
+    engine.run(stage::kDemodulate, demodulate_kernel_for(b, p), w, h);
     engine.run(stage::kReproject, reproject_kernel_for(b, p, has_history), w, h);
   }
   const auto guides = filter_guides(flavor, b);

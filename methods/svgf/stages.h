@@ -3,6 +3,8 @@
 #include <string>
 #include <vector>
 
+#include "core/stage_times.h"
+
 namespace svgf::svgf_stage {
 
 inline constexpr const char* kDemodulate = "demodulate";  // fast mode: + reproject, one launch
@@ -13,7 +15,7 @@ inline constexpr const char* kFeedback = "feedback";      // copy of the feedbac
 inline constexpr const char* kRemodulate = "remodulate";  // fast mode: in the last iteration
 
 inline std::vector<std::string> all() {
-  return {kDemodulate, kReproject, kVariance, kAtrous, kFeedback, kRemodulate};
+  return {kSanitizeStage, kDemodulate, kReproject, kVariance, kAtrous, kFeedback, kRemodulate};
 }
 
 }  // namespace svgf::svgf_stage

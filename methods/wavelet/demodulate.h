@@ -4,7 +4,6 @@
 // color is taken out first and added back after, as SVGF does, so lights are not spread. The
 // luma the luminance weight compares is taken once, from the demodulated noisy color, with
 // Rec. 601 weights (0.299, 0.587, 0.114) as in Nagi.
-#include "core/sanitize.h"
 #include "core/views.h"
 
 namespace svgf {
@@ -16,7 +15,7 @@ SVGF_HD Vec3 wavelet_albedo(Vec3 albedo, float epsilon) {
   return max_v(albedo, 0.f) + make_vec3(epsilon, epsilon, epsilon);
 }
 
-// Returns true where a color sample was replaced (core/sanitize.h; the engines count these).
+// The color is sanitized already (core/sanitize.h, the backend's first stage).
 struct WaveletDemodulateKernel {
   int width = 0;
   ConstRgbView color;
@@ -25,14 +24,12 @@ struct WaveletDemodulateKernel {
   RgbView illumination;
   float* luma = nullptr;
   float epsilon = 0.01f;
-  SVGF_HD bool operator()(int x, int y) const {
+  SVGF_HD void operator()(int x, int y) const {
     const int i = y * width + x;
-    bool replaced = false;
-    const Vec3 c = sanitize_radiance(color.load(i), replaced);
-    const Vec3 v = max_v(c - emission.load_or_zero(i), 0.f) / wavelet_albedo(albedo.load(i), epsilon);
+    const Vec3 v = max_v(color.load(i) - emission.load_or_zero(i), 0.f) /
+                   wavelet_albedo(albedo.load(i), epsilon);
     illumination.store(i, v);
     luma[i] = rec601_luma(v);
-    return replaced;
   }
 };
 

@@ -61,10 +61,10 @@ void run_wavelet_frame(Engine& engine, const WaveletFrameBuffers& b, const Wavel
   namespace stage = wavelet_stage;
   const GuideView& g = b.in.guides;
   const int w = g.width, h = g.height;
-  engine.run_counting(stage::kDemodulate,
-                      WaveletDemodulateKernel{w, b.in.color, b.in.albedo, b.in.emission,
-                                              b.illumination, b.luma, p.epsilon},
-                      w, h);
+  engine.run(stage::kDemodulate,
+             WaveletDemodulateKernel{w, b.in.color, b.in.albedo, b.in.emission, b.illumination,
+                                     b.luma, p.epsilon},
+             w, h);
   engine.run(stage::kSpread, WaveletSpreadKernel{w, h, b.luma, b.spread}, w, h);
   engine.run(stage::kDeviation, WaveletDeviationKernel{w, h, b.spread, b.deviation, p.epsilon},
              w, h);
@@ -123,8 +123,7 @@ class WaveletDenoiser final : public Denoiser {
 #endif
       run_wavelet_frame<ExactArith>(engine, b, params_);
     backend_.finish(in, out);
-    report_.times = engine.times();
-    report_.replaced_samples = engine.counted();
+    report_ = frame_report(engine);
   }
 
   void reset() override {}  // no history
@@ -135,7 +134,7 @@ class WaveletDenoiser final : public Denoiser {
   }
   std::vector<std::string> stages() const override {
     namespace s = wavelet_stage;
-    return {s::kDemodulate, s::kSpread, s::kDeviation, s::kAtrous, s::kRemodulate};
+    return {kSanitizeStage, s::kDemodulate, s::kSpread, s::kDeviation, s::kAtrous, s::kRemodulate};
   }
   std::vector<std::string> debug_buffers() const override {
     namespace b = wavelet_buffer;
