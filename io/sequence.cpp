@@ -207,6 +207,12 @@ Frame Sequence::read(int k) const {
   return f;
 }
 
+FrameHeader Sequence::read_header(int k) const {
+  FrameHeader h = read_frame_header(path(k), {manifest_.width, manifest_.height, "manifest"});
+  if (!h.has_index) h.index = k;
+  return h;
+}
+
 bool Sequence::is_camera_cut(int k) const {
   return std::find(manifest_.camera_cuts.begin(), manifest_.camera_cuts.end(), k) !=
          manifest_.camera_cuts.end();

@@ -44,7 +44,10 @@ class Sequence {
   int size() const { return static_cast<int>(manifest_.frames.size()); }
   std::string path(int k) const;
   // Reads frame k; throws IoError if its size differs from the manifest's (naming the file).
+  // Its index is svgf.frame, or k when the file has none.
   Frame read(int k) const;
+  // Frame k's header, checked as read(k) checks it, without reading pixels; the index as read().
+  FrameHeader read_header(int k) const;
   bool is_camera_cut(int k) const;
   // Throws IoError naming the file when frame k's SHA-256 differs from the manifest's.
   void verify_checksum(int k) const;
