@@ -15,6 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/frame_order.h"
 #include "app/method_options.h"
 #include "app/options.h"
 #include "app/progress_bar.h"
@@ -40,6 +41,8 @@ const char* const kUsageHead =
     "Denoises the sequence in IN_DIR (frame_NNNN.exr + manifest.json) into OUT_DIR:\n"
     "frame_NNNN.exr (linear RGB), preview/ PNGs (noisy | denoised | reference), report.json\n"
     "and report.csv (per-frame time, replaced samples, PSNR and relMSE against the reference).\n"
+    "Frames are read in the order of their frame numbers, and each output keeps its input's\n"
+    "number; the history restarts at camera cuts and at gaps in the numbering.\n"
     "OUT_DIR may not be IN_DIR, lie inside it or hold it (a usage error, exit 2).\n"
     "\n"
     "options:\n"
@@ -47,7 +50,7 @@ const char* const kUsageHead =
     "  --backend cpu|cuda|auto   where to run (default auto: CUDA if a device is present)\n"
     "  --mode exact|fast         exact: bitwise CPU == GPU; fast: GPU only (default exact)\n"
     "  --threads N               CPU threads, 0 = all cores (default 0)\n"
-    "  --frames N                denoise only the first N frames\n";
+    "  --frames N                denoise only the first N frames (by frame number)\n";
 const char* const kUsageTail =
     "  --exposure E              preview exposure (default 1)\n"
     "  --no-verify               skip checking each frame file's SHA-256 against the manifest\n"
@@ -122,6 +125,23 @@ void check_folders_apart(const std::string& in_dir, const std::string& out_dir) 
                      "': the output would mix with the input");
 }
 
+// Everything that can be checked before the output exists, so that bad input never leaves a
+// half-written output: every frame's header (size against the manifest, channels; no pixels
+// read), the numbering (all frames: the order needs every number), then the SHA-256 of each
+// frame to be read. Returns the first `limit` frames in the order of their numbers.
+std::vector<PlannedFrame> validate_sequence(const io::Sequence& sequence, int limit, bool verify) {
+  std::vector<FrameInput> inputs;
+  for (int k = 0; k < sequence.size(); ++k)
+    inputs.push_back({sequence.path(k), sequence.read_header(k).index});
+  std::vector<PlannedFrame> plan =
+      plan_frames(inputs, sequence.manifest().camera_cuts,
+                  (fs::path(sequence.dir()) / "manifest.json").string());
+  if (static_cast<int>(plan.size()) > limit) plan.resize(static_cast<size_t>(limit));
+  if (verify)
+    for (const PlannedFrame& p : plan) sequence.verify_checksum(p.position);
+  return plan;
+}
+
 }  // namespace
 
 int denoise_command(const std::vector<std::string>& args) {
@@ -149,13 +169,12 @@ int denoise_command(const std::vector<std::string>& args) {
   if (!(exposure > 0.f) || !std::isfinite(exposure))
     throw UsageError("--exposure must be a finite number > 0, got '" + o.get("exposure", "") + "'");
   const bool previews = !o.has("no-preview");
+  const int frame_limit = o.get_int("frames", 1 << 20, 1, 1 << 20);
 
   const io::Sequence sequence(in_dir);
-  const int frames = std::min(sequence.size(), o.get_int("frames", sequence.size(), 1, 1 << 20));
-  // Every frame to be read is checked against the manifest's SHA-256 before the output folder
-  // is made: a damaged or swapped file stops the run before anything is written.
-  if (!o.has("no-verify"))
-    for (int k = 0; k < frames; ++k) sequence.verify_checksum(k);
+  const std::vector<PlannedFrame> plan =
+      validate_sequence(sequence, frame_limit, !o.has("no-verify"));
+  const int frames = static_cast<int>(plan.size());
   std::error_code ec;
   fs::create_directories(fs::path(out_dir) / (previews ? "preview" : ""), ec);
   if (ec) throw io::IoError(out_dir + ": cannot create the output folder (" + ec.message() + ")");
@@ -184,8 +203,9 @@ int denoise_command(const std::vector<std::string>& args) {
   int with_reference = 0;
   Image out;
   for (int k = 0; k < frames; ++k) {
-    const Frame in = sequence.read(k);
-    if (sequence.is_camera_cut(k)) denoiser->reset();
+    const PlannedFrame& planned = plan[static_cast<size_t>(k)];
+    const Frame in = sequence.read(planned.position);
+    if (!planned.reset.empty()) denoiser->reset();
     const auto t0 = std::chrono::steady_clock::now();
     denoiser->denoise(in, out);
     const double ms =
@@ -194,19 +214,21 @@ int denoise_command(const std::vector<std::string>& args) {
     const FrameReport& r = denoiser->last_report();
     replaced_total += r.replaced_samples;
 
-    const std::string name = io::frame_file_name(k);
+    const std::string name = io::frame_file_name(planned.number);  // never renumbered
     io::write_rgb_exr((fs::path(out_dir) / name).string(), out);
     if (previews)
       write_preview((fs::path(out_dir) / "preview" / (name.substr(0, name.size() - 4) + ".png")).string(),
                     in, out, exposure);
 
     nlohmann::json fr;
-    fr["frame"] = k;
+    fr["frame"] = planned.number;
+    fr["input"] = fs::path(sequence.path(planned.position)).filename().string();
+    if (!planned.reset.empty()) fr["history_reset"] = planned.reset;
     fr["time_ms"] = ms;
     fr["filter_ms"] = r.times.filter_ms();
     for (const auto& [stage, stage_ms] : r.times.entries()) fr["stage_ms"][stage] = stage_ms;
     fr["replaced_samples"] = r.replaced_samples;
-    csv << k << ',' << ms << ',' << r.times.filter_ms() << ',' << r.replaced_samples;
+    csv << planned.number << ',' << ms << ',' << r.times.filter_ms() << ',' << r.replaced_samples;
     std::string detail = fixed(ms, 1) + " ms";
     if (in.has_reference()) {
       const double p_noisy = metrics::psnr(in.color, in.reference);

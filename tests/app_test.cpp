@@ -1,4 +1,5 @@
 // The svgf denoise command end to end on a generated sequence: outputs, report, bad input.
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -12,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/denoise_command.h"
+#include "app/frame_order.h"
 #include "app/options.h"
 #include "io/exr_frame.h"
 #include "io/sequence.h"
@@ -197,4 +199,121 @@ TEST_CASE("svgf denoise --method wavelet: its flags reach the filter, bad values
                       Catch::Contains("--phi-color applies to svgf, not to wavelet"));
   fs::remove_all(in);
   fs::remove_all(out);
+}
+
+namespace {
+
+// A synthetic sequence whose files, in manifest order, hold the given frame numbers.
+fs::path write_numbered(const fs::path& dir, const std::vector<int>& numbers) {
+  test::SyntheticScene scene;
+  io::SequenceWriter writer(dir.string(), io::FrameStorage{});
+  for (int n : numbers) writer.add(scene.frame(n));
+  io::Manifest m;
+  m.scene = "synthetic";
+  m.generator = "app_test";
+  writer.commit(m);
+  return dir;
+}
+
+std::vector<std::string> file_names(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+nlohmann::json read_json(const fs::path& p) {
+  std::ifstream f(p);
+  return nlohmann::json::parse(f);
+}
+
+}  // namespace
+
+// Issue 15, item 2: frames were read in the manifest's order and outputs numbered by position.
+// They are now read by frame number (svgf.frame) and each output keeps its input's number, so a
+// shuffled manifest gives the same bytes as the ordered one.
+TEST_CASE("svgf denoise reads frames by frame number, not by manifest order", "[app]") {
+  const fs::path ordered = write_numbered(scratch("order_in"), {0, 1, 2});
+  const fs::path shuffled = write_numbered(scratch("shuffled_in"), {2, 0, 1});
+  const fs::path out_a = scratch("order_out"), out_b = scratch("shuffled_out");
+  for (const auto& [in, out] : {std::pair{ordered, out_a}, std::pair{shuffled, out_b}})
+    REQUIRE(app::denoise_command({in.string(), out.string(), "--backend", "cpu", "--threads", "2",
+                                  "--no-preview"}) == 0);
+  for (int k = 0; k < 3; ++k) {
+    const std::string name = io::frame_file_name(k);
+    INFO(name);
+    REQUIRE(file_bytes(out_b / name) == file_bytes(out_a / name));
+  }
+  const auto report = read_json(out_b / "report.json");
+  REQUIRE(report["frames"].size() == 3);
+  for (int k = 0; k < 3; ++k) {
+    REQUIRE(report["frames"][k]["frame"] == k);
+    REQUIRE(report["frames"][k]["input"] == io::frame_file_name((k + 1) % 3));  // 2, 0, 1
+  }
+  for (const auto& p : {ordered, shuffled, out_a, out_b}) fs::remove_all(p);
+}
+
+// A gap in the numbering (a dropped frame) restarts the history, as a camera cut does: frame 5
+// must not be reprojected from frame 2. Outputs keep their numbers across the gap.
+TEST_CASE("svgf denoise restarts the history at a gap and keeps the frame numbers", "[app]") {
+  const fs::path gapped = write_numbered(scratch("gap_in"), {0, 1, 2, 5, 6});
+  const fs::path tail = write_numbered(scratch("gap_tail_in"), {5, 6});
+  const fs::path out = scratch("gap_out"), tail_out = scratch("gap_tail_out");
+  for (const auto& [in, o] : {std::pair{gapped, out}, std::pair{tail, tail_out}})
+    REQUIRE(app::denoise_command({in.string(), o.string(), "--backend", "cpu", "--threads", "2",
+                                  "--no-preview"}) == 0);
+  REQUIRE(file_names(out) == std::vector<std::string>{"frame_0000.exr", "frame_0001.exr",
+                                                      "frame_0002.exr", "frame_0005.exr",
+                                                      "frame_0006.exr", "report.csv",
+                                                      "report.json"});
+  // Frames 5 and 6 come out as if the sequence started at 5.
+  for (const char* name : {"frame_0005.exr", "frame_0006.exr"}) {
+    INFO(name);
+    REQUIRE(file_bytes(out / name) == file_bytes(tail_out / name));
+  }
+  const auto report = read_json(out / "report.json");
+  REQUIRE(report["frames"][3]["frame"] == 5);
+  REQUIRE(report["frames"][3]["history_reset"] == "gap: frames 3 to 4 missing");
+  REQUIRE(!report["frames"][4].contains("history_reset"));
+  for (const auto& p : {gapped, tail, out, tail_out}) fs::remove_all(p);
+}
+
+TEST_CASE("svgf denoise refuses two files with one frame number, naming both", "[app]") {
+  const fs::path in = write_numbered(scratch("dup_in"), {0, 1, 1}), out = scratch("dup_out");
+  REQUIRE_THROWS_WITH(app::denoise_command({in.string(), out.string(), "--backend", "cpu"}),
+                      Catch::Contains((in / "frame_0001.exr").string()) &&
+                          Catch::Contains((in / "frame_0002.exr").string()) &&
+                          Catch::Contains("both frame 1"));
+  REQUIRE(!fs::exists(out));
+  fs::remove_all(in);
+}
+
+// Every frame's header is checked before anything is written, even with --no-verify: a later
+// frame that lacks its channels stops the run with no output folder.
+TEST_CASE("svgf denoise checks every frame's header before writing anything", "[app]") {
+  const fs::path in = write_synthetic(scratch("header_in"), 3), out = scratch("header_out");
+  io::write_rgb_exr((in / io::frame_file_name(2)).string(), Image(64, 48, 3));
+  REQUIRE_THROWS_WITH(app::denoise_command({in.string(), out.string(), "--backend", "cpu",
+                                            "--no-verify"}),
+                      Catch::Contains(io::frame_file_name(2)) && Catch::Contains("color.R"));
+  REQUIRE(!fs::exists(out));
+  fs::remove_all(in);
+}
+
+TEST_CASE("plan_frames: order, restarts and refusals", "[app]") {
+  using app::plan_frames;
+  const auto plan = plan_frames({{"a", 4}, {"b", 0}, {"c", 1}, {"d", 3}, {"e", 7}}, {3}, "m");
+  std::vector<std::pair<int, std::string>> got;
+  for (const auto& p : plan) got.push_back({p.number, p.reset});
+  REQUIRE(got == std::vector<std::pair<int, std::string>>{{0, "first frame"},
+                                                          {1, ""},
+                                                          {3, "gap: frame 2 missing"},
+                                                          {4, ""},
+                                                          {7, "gap: frames 5 to 6 missing"}});
+  REQUIRE(plan[0].position == 1);
+  REQUIRE(plan_frames({{"a", 0}, {"b", 1}}, {1}, "m")[1].reset == "camera cut");
+  REQUIRE_THROWS_WITH(plan_frames({{"a", 0}, {"b", -1}}, {}, "m"),
+                      Catch::Contains("b") && Catch::Contains("negative"));
+  REQUIRE_THROWS_WITH(plan_frames({{"a", 0}, {"b", 1}}, {2}, "m"),
+                      Catch::Contains("m: camera cut at frame 2"));
 }
