@@ -7,6 +7,7 @@
 #include "core/frame.h"
 #include "io/exr_frame.h"
 #include "io/io_error.h"
+#include "io/staged_folder.h"
 
 namespace svgf::io {
 
@@ -57,21 +58,18 @@ class Sequence {
   Manifest manifest_;
 };
 
-// Writes a sequence into `dir` atomically and frame by frame: frames go into a temporary sibling
-// folder, and commit() writes the manifest (frame names and SHA-256 sums filled in) and renames
-// the folder to `dir`, replacing an existing one. Destroyed without commit(): the temporary
-// folder is removed and `dir` is untouched.
+// Writes a sequence into `dir` atomically and frame by frame: frames go into a staging sibling
+// folder (io::StagedFolder), and commit() writes the manifest (frame names and SHA-256 sums
+// filled in) and swaps the folder in, replacing an existing sequence. Destroyed without
+// commit(): the staging folder is removed and `dir` is untouched.
 class SequenceWriter {
  public:
   SequenceWriter(const std::string& dir, const FrameStorage& storage);
-  ~SequenceWriter();
-  SequenceWriter(const SequenceWriter&) = delete;
-  SequenceWriter& operator=(const SequenceWriter&) = delete;
   void add(const Frame& frame);  // written as frame_file_name(number of frames added so far)
   void commit(Manifest manifest);
 
  private:
-  std::string dir_, tmp_dir_;
+  StagedFolder folder_;
   FrameStorage storage_;
   std::vector<ManifestFile> files_;
   bool committed_ = false;
