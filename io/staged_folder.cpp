@@ -41,6 +41,10 @@ std::string normalized_folder(const std::string& dir) {
   return p.string();
 }
 
+bool is_staging_leftover(const std::string& entry, const std::string& name) {
+  return pid_in(entry, name, ".tmp-") > 0 || pid_in(entry, name, ".old-") > 0;
+}
+
 std::string why_not_replaceable(const std::string& dir, const std::string& marker) {
   std::error_code ec;
   if (!fs::exists(dir, ec)) return "";

@@ -15,6 +15,10 @@ std::string normalized_folder(const std::string& dir);
 // report.json for svgf denoise's output). A wrong path such as a home folder is never wiped.
 std::string why_not_replaceable(const std::string& dir, const std::string& marker);
 
+// True when `entry` (a file name) is a leftover of a writer into a folder named `name`:
+// `name.tmp-PID` or `name.old-PID`.
+bool is_staging_leftover(const std::string& entry, const std::string& name);
+
 // Leftovers beside `dir` of writers that died without cleaning up (SIGKILL, power loss):
 // `dir.tmp-PID` staging folders of processes no longer running are removed; an old folder
 // `dir.old-PID` that such a process had moved aside comes back as `dir` when `dir` is missing
