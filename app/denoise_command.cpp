@@ -11,6 +11,7 @@
 #include <string>
 
 #include "app/frame_order.h"
+#include "app/interrupt.h"
 #include "app/method_options.h"
 #include "app/options.h"
 #include "app/progress_bar.h"
@@ -42,7 +43,8 @@ const char* const kUsageHead =
     "OUT_DIR may not be IN_DIR, lie inside it or hold it (a usage error, exit 2).\n"
     "The run is written beside OUT_DIR and replaces it as a whole only when it succeeds\n"
     "(OUT_DIR must be absent, empty or an earlier output); a failed run leaves OUT_DIR as\n"
-    "it was and says what failed in OUT_DIR.failed-report.json (exit 1).\n"
+    "it was and says what failed in OUT_DIR.failed-report.json (exit 1; 130 or 143 when\n"
+    "SIGINT or SIGTERM stopped it).\n"
     "\n"
     "options:\n"
     "  --method M                svgf, gaussian, wavelet, jbf, jbf-atrous (default svgf)\n"
@@ -149,14 +151,19 @@ std::string output_folder(const std::string& out_arg) {
 // frame to be read. Returns the first `limit` frames in the order of their numbers.
 std::vector<PlannedFrame> validate_sequence(const io::Sequence& sequence, int limit, bool verify) {
   std::vector<FrameInput> inputs;
-  for (int k = 0; k < sequence.size(); ++k)
+  for (int k = 0; k < sequence.size(); ++k) {
+    throw_if_interrupted();
     inputs.push_back({sequence.path(k), sequence.read_header(k).index});
+  }
   std::vector<PlannedFrame> plan =
       plan_frames(inputs, sequence.manifest().camera_cuts,
                   (fs::path(sequence.dir()) / "manifest.json").string());
   if (static_cast<int>(plan.size()) > limit) plan.resize(static_cast<size_t>(limit));
   if (verify)
-    for (const PlannedFrame& p : plan) sequence.verify_checksum(p.position);
+    for (const PlannedFrame& p : plan) {
+      throw_if_interrupted();
+      sequence.verify_checksum(p.position);
+    }
   return plan;
 }
 
@@ -201,6 +208,7 @@ void run(const RunSettings& s, Denoiser& denoiser, RunProgress& progress) {
   Image out;
   progress.stage = "denoising";
   for (const PlannedFrame& planned : plan) {
+    throw_if_interrupted();  // between frames: a frame is denoised and written whole or not at all
     progress.frame = planned.number;
     progress.file = sequence.path(planned.position);
     const Frame in = sequence.read(planned.position);
@@ -222,8 +230,10 @@ void run(const RunSettings& s, Denoiser& denoiser, RunProgress& progress) {
   }
   progress.frame = -1;
   progress.stage = "writing the report";
+  throw_if_interrupted();
   report.write(staged.path());
   progress.stage = "moving the output into place";
+  throw_if_interrupted();  // the last check: a signal during the swap lets it finish
   staged.commit();
   // The run succeeded: a failure report of an earlier run would now describe the wrong output.
   std::error_code ignored;
@@ -266,9 +276,16 @@ int denoise_command(const std::vector<std::string>& args) {
 
   // From here on a failure leaves OUT_DIR as it was and says what failed beside it.
   RunProgress progress;
+  const InterruptGuard interrupts;
   try {
     run(settings, *denoiser, progress);
     return 0;
+  } catch (const Interrupted& e) {
+    const int status = 128 + e.signal_number();  // the shell's convention: 130 for SIGINT
+    write_failure_report(settings.in_dir, settings.out_dir, progress, e.what(), status);
+    std::fprintf(stderr, "svgf: %s; %s left as it was\n", e.what(),
+                 io::printable(settings.out_dir).c_str());
+    return status;
   } catch (const std::exception& e) {
     if (write_failure_report(settings.in_dir, settings.out_dir, progress, e.what(), 1))
       std::fprintf(stderr, "svgf: %s left as it was; the failure is described in %s\n",

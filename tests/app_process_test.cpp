@@ -97,3 +97,50 @@ TEST_CASE("svgf denoise stops on a report it could not write", "[app][process]")
   fs::remove(log);
   test::remove_output(out);
 }
+
+// Issue 15, item 3: Ctrl-C killed the run with its outputs half-written into OUT_DIR. SIGINT now
+// stops the run at the next frame: the staging folder is removed, the previous output stays
+// byte for byte, a failure report says so, and the exit status is 128 + SIGINT = 130.
+TEST_CASE("svgf denoise interrupted by SIGINT leaves no trace and exits with 130",
+          "[app][process]") {
+  test::SyntheticScene scene;
+  scene.width = 128;
+  scene.height = 96;
+  scene.speed = 1;
+  const int frames = 40;  // long enough that the signal lands well before the end
+  const fs::path in = test::write_synthetic(scratch("sigint_in"), frames, scene);
+  const fs::path out = scratch("sigint_out"), log = scratch("sigint_log");
+  REQUIRE(app::denoise_command({in.string(), out.string(), "--backend", "cpu", "--threads", "2",
+                                "--frames", "2"}) == 0);  // the previous output
+  const auto before = test::snapshot(out);
+
+  const pid_t pid = start_svgf({"denoise", in.string(), out.string(), "--backend", "cpu",
+                                "--threads", "2"}, log);
+  // Signalled once it is denoising: its second frame is in the staging folder.
+  const fs::path second = out.string() + ".tmp-" + std::to_string(pid) + "/frame_0001.exr";
+  int status = -1;
+  for (int waited_ms = 0; waited_ms < 20000 && !fs::exists(second); ++waited_ms) {
+    int raw = 0;
+    if (::waitpid(pid, &raw, WNOHANG) == pid) {  // ended without ever writing a frame
+      status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 1000 + WTERMSIG(raw);
+      break;
+    }
+    ::usleep(1000);
+  }
+  if (status == -1) {
+    ::kill(pid, SIGINT);
+    status = wait_for(pid);
+  }
+  INFO(file_bytes(log));
+  REQUIRE(status == 130);
+  REQUIRE_THAT(file_bytes(log), Catch::Contains("interrupted by SIGINT"));
+  REQUIRE(test::snapshot(out) == before);
+  REQUIRE(test::leftovers(out).empty());
+  const auto failure = read_json(out.string() + ".failed-report.json");
+  REQUIRE(failure["exit_status"] == 130);
+  REQUIRE(failure["stage"] == "denoising");
+  REQUIRE(failure["frames_written"].get<int>() < frames);
+  fs::remove_all(in);
+  fs::remove(log);
+  test::remove_output(out);
+}
