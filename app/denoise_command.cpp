@@ -227,8 +227,9 @@ void run(const RunSettings& s, Denoiser& denoiser, RunProgress& progress) {
     const std::string detail = report.add(planned, fs::path(progress.file).filename().string(), ms,
                                           denoiser.last_report(), in, out);
     bar.update(progress.frames_written, detail);
+    progress.frame = -1;  // done: a stop before the next frame names none
+    progress.file.clear();
   }
-  progress.frame = -1;
   progress.stage = "writing the report";
   throw_if_interrupted();
   report.write(staged.path());

@@ -139,6 +139,8 @@ TEST_CASE("svgf denoise interrupted by SIGINT leaves no trace and exits with 130
   const auto failure = read_json(out.string() + ".failed-report.json");
   REQUIRE(failure["exit_status"] == 130);
   REQUIRE(failure["stage"] == "denoising");
+  REQUIRE(!failure.contains("frame"));  // stopped between frames
+  REQUIRE(failure["frames_written"].get<int>() >= 2);
   REQUIRE(failure["frames_written"].get<int>() < frames);
   fs::remove_all(in);
   fs::remove(log);
