@@ -5,28 +5,25 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <iomanip>
-#include <iostream>
 #include <memory>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 
-#include <nlohmann/json.hpp>
-
+#include "app/frame_order.h"
+#include "app/interrupt.h"
 #include "app/method_options.h"
 #include "app/options.h"
 #include "app/progress_bar.h"
+#include "app/run_report.h"
 #include "pipeline/make_denoiser.h"
 #include "core/tonemap.h"
-#include "io/atomic_file.h"
 #include "io/exr_frame.h"
 #include "io/png.h"
+#include "io/printable.h"
 #include "io/sequence.h"
+#include "io/staged_folder.h"
 #include "kernels_cpu/parallel_for.h"
-#include "metrics/image_metrics.h"
 
 namespace fs = std::filesystem;
 
@@ -41,25 +38,25 @@ const char* const kUsageHead =
     "Denoises the sequence in IN_DIR (frame_NNNN.exr + manifest.json) into OUT_DIR:\n"
     "frame_NNNN.exr (linear RGB), preview/ PNGs (noisy | denoised | reference), report.json\n"
     "and report.csv (per-frame time, replaced samples, PSNR and relMSE against the reference).\n"
+    "Frames are read in the order of their frame numbers, and each output keeps its input's\n"
+    "number; the history restarts at camera cuts and at gaps in the numbering.\n"
     "OUT_DIR may not be IN_DIR, lie inside it or hold it (a usage error, exit 2).\n"
+    "The run is written beside OUT_DIR and replaces it as a whole only when it succeeds\n"
+    "(OUT_DIR must be absent, empty or an earlier output); a failed run leaves OUT_DIR as\n"
+    "it was and says what failed in OUT_DIR.failed-report.json (exit 1; 130 or 143 when\n"
+    "SIGINT or SIGTERM stopped it).\n"
     "\n"
     "options:\n"
     "  --method M                svgf, gaussian, wavelet, jbf, jbf-atrous (default svgf)\n"
     "  --backend cpu|cuda|auto   where to run (default auto: CUDA if a device is present)\n"
     "  --mode exact|fast         exact: bitwise CPU == GPU; fast: GPU only (default exact)\n"
     "  --threads N               CPU threads, 0 = all cores (default 0)\n"
-    "  --frames N                denoise only the first N frames\n";
+    "  --frames N                denoise only the first N frames (by frame number)\n";
 const char* const kUsageTail =
     "  --exposure E              preview exposure (default 1)\n"
     "  --no-verify               skip checking each frame file's SHA-256 against the manifest\n"
     "                            (checked for every frame before any output by default)\n"
     "  --no-preview              skip the PNG previews\n";
-
-// Pixels per kind of repair the sanitize stage made (core/sanitize.h).
-nlohmann::json repairs_json(const InputRepairs& r) {
-  return {{"color", r.color},   {"albedo", r.albedo},   {"emission", r.emission},
-          {"normal", r.normal}, {"surface", r.surface}, {"motion", r.motion}};
-}
 
 }  // namespace
 
@@ -98,12 +95,6 @@ void write_preview(const std::string& path, const Frame& in, const Image& out, f
   io::write_png_rgb8(path, strip.data(), w * panels, h);
 }
 
-std::string fixed(double v, int digits) {
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(digits) << v;
-  return s.str();
-}
-
 // True when `inner` is `outer` or lies inside it, after resolving ., .. and symbolic links
 // (weakly: the output folder need not exist yet).
 bool same_or_inside(const fs::path& inner, const fs::path& outer) {
@@ -127,6 +118,128 @@ void check_folders_apart(const std::string& in_dir, const std::string& out_dir) 
   if (same_or_inside(in_dir, out_dir))
     throw UsageError("IN_DIR '" + in_dir + "' is inside OUT_DIR '" + out_dir +
                      "': the output would mix with the input");
+  // OUT_DIR.tmp-PID and OUT_DIR.old-PID are what a killed run leaves, and the next run into
+  // OUT_DIR removes or moves them (io::clean_stale_staging): they cannot be the input.
+  const fs::path in = fs::weakly_canonical(fs::absolute(in_dir));
+  const fs::path out = fs::weakly_canonical(fs::absolute(out_dir));
+  for (fs::path p = in; p.has_relative_path(); p = p.parent_path())
+    if (p.parent_path() == out.parent_path() &&
+        io::is_staging_leftover(p.filename().string(), out.filename().string()))
+      throw UsageError("IN_DIR '" + in_dir + "' is in " + p.filename().string() +
+                       ", a leftover of a run into OUT_DIR '" + out_dir +
+                       "' that the next run would clear");
+}
+
+// OUT_DIR as the staging folder's sibling needs it, checked for replacement up front: the run
+// replaces it as a whole, so it must be absent, empty or an earlier run's output (it holds
+// report.json); a wrong path such as a home folder is refused before anything is read.
+std::string output_folder(const std::string& out_arg) {
+  std::string out_dir;
+  try {
+    out_dir = io::normalized_folder(out_arg);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError("OUT_DIR: " + std::string(e.what()));
+  }
+  if (const std::string why = io::why_not_replaceable(out_dir, kReportJson); !why.empty())
+    throw UsageError(why + " (OUT_DIR is replaced as a whole by each run)");
+  return out_dir;
+}
+
+// Everything that can be checked before the output exists, so that bad input never leaves a
+// half-written output: every frame's header (size against the manifest, channels; no pixels
+// read), the numbering (all frames: the order needs every number), then the SHA-256 of each
+// frame to be read. Returns the first `limit` frames in the order of their numbers.
+std::vector<PlannedFrame> validate_sequence(const io::Sequence& sequence, int limit, bool verify) {
+  std::vector<FrameInput> inputs;
+  for (int k = 0; k < sequence.size(); ++k) {
+    throw_if_interrupted();
+    inputs.push_back({sequence.path(k), sequence.read_header(k).index});
+  }
+  std::vector<PlannedFrame> plan =
+      plan_frames(inputs, sequence.manifest().camera_cuts,
+                  (fs::path(sequence.dir()) / "manifest.json").string());
+  if (static_cast<int>(plan.size()) > limit) plan.resize(static_cast<size_t>(limit));
+  if (verify)
+    for (const PlannedFrame& p : plan) {
+      throw_if_interrupted();
+      sequence.verify_checksum(p.position);
+    }
+  return plan;
+}
+
+// What a run needs once its arguments are accepted.
+struct RunSettings {
+  std::string in_dir, out_dir;
+  int frame_limit = 0;
+  bool verify = true, previews = true;
+  float exposure = 1.f;
+  Backend requested_backend = Backend::Auto;
+};
+
+// Validates the input, denoises into a staging folder beside OUT_DIR and swaps it in at the end
+// (docs/frame-format.md, "Output folder"): until then OUT_DIR keeps whatever it held.
+void run(const RunSettings& s, Denoiser& denoiser, RunProgress& progress) {
+  progress.stage = "reading the manifest";
+  const io::Sequence sequence(s.in_dir);
+  progress.stage = "validating the input";
+  const std::vector<PlannedFrame> plan = validate_sequence(sequence, s.frame_limit, s.verify);
+
+  progress.stage = "making the staging folder";
+  io::StagedFolder staged(s.out_dir, kReportJson);
+  const fs::path folder = staged.path();
+  if (s.previews) {
+    std::error_code ec;
+    fs::create_directories(folder / "preview", ec);
+    if (ec) throw io::IoError((folder / "preview").string() + ": cannot create folder (" +
+                              ec.message() + ")");
+  }
+
+  const int frames = static_cast<int>(plan.size());
+  std::fprintf(stderr, "svgf: %s: %d frames of %dx%d (%s) with %s\n", s.in_dir.c_str(), frames,
+               sequence.manifest().width, sequence.manifest().height,
+               sequence.manifest().scene.c_str(), denoiser.description().c_str());
+  std::string why_not_cuda;
+  if (s.requested_backend == Backend::Auto && !cuda_available(&why_not_cuda))
+    std::fprintf(stderr, "svgf: --backend auto chose the CPU: %s\n", why_not_cuda.c_str());
+
+  RunReport report(s.in_dir, sequence.manifest().scene, sequence.manifest().width,
+                   sequence.manifest().height, denoiser.description());
+  ProgressBar bar("denoise", frames);
+  Image out;
+  progress.stage = "denoising";
+  for (const PlannedFrame& planned : plan) {
+    throw_if_interrupted();  // between frames: a frame is denoised and written whole or not at all
+    progress.frame = planned.number;
+    progress.file = sequence.path(planned.position);
+    const Frame in = sequence.read(planned.position);
+    if (!planned.reset.empty()) denoiser.reset();
+    const auto t0 = std::chrono::steady_clock::now();
+    denoiser.denoise(in, out);
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+
+    const std::string name = io::frame_file_name(planned.number);  // never renumbered
+    io::write_rgb_exr((folder / name).string(), out);
+    if (s.previews)
+      write_preview((folder / "preview" / (name.substr(0, name.size() - 4) + ".png")).string(),
+                    in, out, s.exposure);
+    ++progress.frames_written;
+    const std::string detail = report.add(planned, fs::path(progress.file).filename().string(), ms,
+                                          denoiser.last_report(), in, out);
+    bar.update(progress.frames_written, detail);
+    progress.frame = -1;  // done: a stop before the next frame names none
+    progress.file.clear();
+  }
+  progress.stage = "writing the report";
+  throw_if_interrupted();
+  report.write(staged.path());
+  progress.stage = "moving the output into place";
+  throw_if_interrupted();  // the last check: a signal during the swap lets it finish
+  staged.commit();
+  // The run succeeded: a failure report of an earlier run would now describe the wrong output.
+  std::error_code ignored;
+  fs::remove(failure_report_path(s.out_dir), ignored);
+  report.print_summary(s.in_dir, s.out_dir, denoiser.description());
 }
 
 }  // namespace
@@ -140,8 +253,10 @@ int denoise_command(const std::vector<std::string>& args) {
     return 0;
   }
   if (o.positional().size() != 2) throw UsageError("denoise needs IN_DIR and OUT_DIR");
-  const std::string in_dir = o.positional()[0], out_dir = o.positional()[1];
-  check_folders_apart(in_dir, out_dir);
+  RunSettings settings;
+  settings.in_dir = o.positional()[0];
+  check_folders_apart(settings.in_dir, o.positional()[1]);
+  settings.out_dir = output_folder(o.positional()[1]);
   // Every argument is checked before anything is read or written: a bad value or an impossible
   // combination (fast mode on the CPU) is a usage error, exit 2.
   DenoiserConfig config;
@@ -152,124 +267,33 @@ int denoise_command(const std::vector<std::string>& args) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
-  const float exposure = o.get_float("exposure", 1.f);
-  if (!(exposure > 0.f) || !std::isfinite(exposure))
+  settings.requested_backend = config.backend;
+  settings.exposure = o.get_float("exposure", 1.f);
+  if (!(settings.exposure > 0.f) || !std::isfinite(settings.exposure))
     throw UsageError("--exposure must be a finite number > 0, got '" + o.get("exposure", "") + "'");
-  const bool previews = !o.has("no-preview");
+  settings.previews = !o.has("no-preview");
+  settings.verify = !o.has("no-verify");
+  settings.frame_limit = o.get_int("frames", 1 << 20, 1, 1 << 20);
 
-  const io::Sequence sequence(in_dir);
-  const int frames = std::min(sequence.size(), o.get_int("frames", sequence.size(), 1, 1 << 20));
-  // Every frame to be read is checked against the manifest's SHA-256 before the output folder
-  // is made: a damaged or swapped file stops the run before anything is written.
-  if (!o.has("no-verify"))
-    for (int k = 0; k < frames; ++k) sequence.verify_checksum(k);
-  std::error_code ec;
-  fs::create_directories(fs::path(out_dir) / (previews ? "preview" : ""), ec);
-  if (ec) throw io::IoError(out_dir + ": cannot create the output folder (" + ec.message() + ")");
-
-  std::fprintf(stderr, "svgf: %s: %d frames of %dx%d (%s) with %s\n", in_dir.c_str(), frames,
-               sequence.manifest().width, sequence.manifest().height,
-               sequence.manifest().scene.c_str(), denoiser->description().c_str());
-  std::string why_not_cuda;
-  if (config.backend == Backend::Auto && !cuda_available(&why_not_cuda))
-    std::fprintf(stderr, "svgf: --backend auto chose the CPU: %s\n", why_not_cuda.c_str());
-
-  nlohmann::json report;
-  report["input"] = in_dir;
-  report["scene"] = sequence.manifest().scene;
-  report["width"] = sequence.manifest().width;
-  report["height"] = sequence.manifest().height;
-  report["denoiser"] = denoiser->description();
-  report["frames"] = nlohmann::json::array();
-  std::ostringstream csv;
-  csv << "frame,time_ms,filter_ms,replaced_samples,psnr_noisy_db,psnr_denoised_db,relmse_noisy,"
-         "relmse_denoised\n";
-
-  ProgressBar bar("denoise", frames);
-  double total_ms = 0, psnr_sum = 0, noisy_psnr_sum = 0;
-  int64_t replaced_total = 0;
-  InputRepairs repairs_total;
-  int frames_repaired = 0;
-  int with_reference = 0;
-  Image out;
-  for (int k = 0; k < frames; ++k) {
-    const Frame in = sequence.read(k);
-    if (sequence.is_camera_cut(k)) denoiser->reset();
-    const auto t0 = std::chrono::steady_clock::now();
-    denoiser->denoise(in, out);
-    const double ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    total_ms += ms;
-    const FrameReport& r = denoiser->last_report();
-    replaced_total += r.replaced_samples;
-    repairs_total += r.repairs;
-    frames_repaired += r.repairs.total() > 0 ? 1 : 0;
-
-    const std::string name = io::frame_file_name(k);
-    io::write_rgb_exr((fs::path(out_dir) / name).string(), out);
-    if (previews)
-      write_preview((fs::path(out_dir) / "preview" / (name.substr(0, name.size() - 4) + ".png")).string(),
-                    in, out, exposure);
-
-    nlohmann::json fr;
-    fr["frame"] = k;
-    fr["time_ms"] = ms;
-    fr["filter_ms"] = r.times.filter_ms();
-    for (const auto& [stage, stage_ms] : r.times.entries()) fr["stage_ms"][stage] = stage_ms;
-    fr["replaced_samples"] = r.replaced_samples;
-    fr["repairs"] = repairs_json(r.repairs);
-    csv << k << ',' << ms << ',' << r.times.filter_ms() << ',' << r.replaced_samples;
-    std::string detail = fixed(ms, 1) + " ms";
-    if (in.has_reference()) {
-      const double p_noisy = metrics::psnr(in.color, in.reference);
-      const double p_out = metrics::psnr(out, in.reference);
-      const double rel_noisy = metrics::relmse(in.color, in.reference);
-      const double rel_out = metrics::relmse(out, in.reference);
-      fr["psnr_noisy_db"] = p_noisy;
-      fr["psnr_denoised_db"] = p_out;
-      fr["relmse_noisy"] = rel_noisy;
-      fr["relmse_denoised"] = rel_out;
-      csv << ',' << p_noisy << ',' << p_out << ',' << rel_noisy << ',' << rel_out;
-      psnr_sum += p_out;
-      noisy_psnr_sum += p_noisy;
-      ++with_reference;
-      detail += ", PSNR " + fixed(p_out, 2) + " dB";
-    } else {
-      csv << ",,,,";
-    }
-    csv << '\n';
-    report["frames"].push_back(fr);
-    bar.update(k + 1, detail);
+  // From here on a failure leaves OUT_DIR as it was and says what failed beside it.
+  RunProgress progress;
+  const InterruptGuard interrupts;
+  try {
+    run(settings, *denoiser, progress);
+    return 0;
+  } catch (const Interrupted& e) {
+    const int status = 128 + e.signal_number();  // the shell's convention: 130 for SIGINT
+    write_failure_report(settings.in_dir, settings.out_dir, progress, e.what(), status);
+    std::fprintf(stderr, "svgf: %s; %s left as it was\n", e.what(),
+                 io::printable(settings.out_dir).c_str());
+    return status;
+  } catch (const std::exception& e) {
+    if (write_failure_report(settings.in_dir, settings.out_dir, progress, e.what(), 1))
+      std::fprintf(stderr, "svgf: %s left as it was; the failure is described in %s\n",
+                   io::printable(settings.out_dir).c_str(),
+                   io::printable(failure_report_path(settings.out_dir)).c_str());
+    throw;
   }
-
-  report["mean_time_ms"] = total_ms / frames;
-  report["replaced_samples"] = replaced_total;
-  report["repairs"] = repairs_json(repairs_total);
-  if (frames_repaired > 0)
-    std::cerr << "svgf: warning: bad input repaired in " << frames_repaired << " of " << frames
-              << " frames (pixels: " << repairs_json(repairs_total).dump()
-              << "; docs/bad-input.md has the rule)\n";
-  if (with_reference) {
-    report["mean_psnr_noisy_db"] = noisy_psnr_sum / with_reference;
-    report["mean_psnr_denoised_db"] = psnr_sum / with_reference;
-  }
-  const std::string json_text = report.dump(2) + "\n", csv_text = csv.str();
-  io::write_atomically((fs::path(out_dir) / "report.json").string(),
-                       [&](const std::string& tmp) { std::ofstream(tmp) << json_text; });
-  io::write_atomically((fs::path(out_dir) / "report.csv").string(),
-                       [&](const std::string& tmp) { std::ofstream(tmp) << csv_text; });
-
-  std::printf("denoised %d frames of %s into %s\n", frames, in_dir.c_str(), out_dir.c_str());
-  std::printf("  denoiser          %s\n", denoiser->description().c_str());
-  std::printf("  time per frame    %s ms (mean, I/O excluded)\n", fixed(total_ms / frames, 2).c_str());
-  std::printf("  replaced samples  %lld (NaN, Inf or negative color set to 0)\n",
-              static_cast<long long>(replaced_total));
-  if (with_reference)
-    std::printf("  PSNR              %s dB noisy -> %s dB denoised (mean over %d frames)\n",
-                fixed(noisy_psnr_sum / with_reference, 2).c_str(),
-                fixed(psnr_sum / with_reference, 2).c_str(), with_reference);
-  std::printf("  report            %s/report.json, report.csv\n", out_dir.c_str());
-  return 0;
 }
 
 }  // namespace svgf::app

@@ -3,6 +3,9 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <system_error>
 
@@ -26,6 +29,21 @@ void write_atomically(const std::string& path,
     std::filesystem::remove(tmp, ignored);
     throw;
   }
+}
+
+void write_file_atomically(const std::string& path, const std::string& bytes) {
+  write_atomically(path, [&](const std::string& tmp) {
+    // stdio rather than a stream: its calls report errno (EFBIG, ENOSPC) for the message.
+    std::FILE* f = std::fopen(tmp.c_str(), "wb");
+    if (!f) throw IoError(path + ": cannot open for writing: " + std::strerror(errno));
+    const size_t written = std::fwrite(bytes.data(), 1, bytes.size(), f);
+    const int write_errno = errno;
+    if (written != bytes.size()) {
+      std::fclose(f);
+      throw IoError(path + ": write error: " + std::strerror(write_errno));
+    }
+    if (std::fclose(f) != 0) throw IoError(path + ": write error: " + std::strerror(errno));
+  });
 }
 
 }  // namespace svgf::io

@@ -9,4 +9,9 @@ namespace svgf::io {
 // exception propagates: an interrupted or failed write never leaves a partial `path`.
 void write_atomically(const std::string& path, const std::function<void(const std::string&)>& write);
 
+// Writes `bytes` to `path` through write_atomically, checking the open, the write and the close:
+// a full disk or a file size limit is an IoError naming `path` and the cause, never a short or
+// empty file renamed into place.
+void write_file_atomically(const std::string& path, const std::string& bytes);
+
 }  // namespace svgf::io

@@ -155,29 +155,45 @@ class ExrReader {
   // a group that is partly there names its first missing channel.
   template <size_t N>
   Image read_group(const char* const (&names)[N], bool optional) {
-    if (optional) {
-      bool any = false;
-      for (const char* name : names) any = any || header_.channels().findChannel(name);
-      if (!any) return Image();
-    }
+    if (!check_group(names, optional)) return Image();
     Image im(width_, height_, static_cast<int>(N));
     for (size_t c = 0; c < N; ++c) bind_float(names[c], im.plane(static_cast<int>(c)));
     return im;
   }
 
-  void bind_float(const char* name, float* plane) {
+  // The checks of read_group without allocating; false for an optional group absent altogether.
+  template <size_t N>
+  bool check_group(const char* const (&names)[N], bool optional) const {
+    if (optional) {
+      bool any = false;
+      for (const char* name : names) any = any || header_.channels().findChannel(name);
+      if (!any) return false;
+    }
+    for (const char* name : names) check_float(name);
+    return true;
+  }
+
+  void check_float(const char* name) const {
     const Imf::PixelType t = check_channel(name);
     if (t != Imf::HALF && t != Imf::FLOAT)
       throw IoError(path_ + ": channel '" + name + "' has pixel type " + type_name(t) +
                     ", expected HALF or FLOAT");
-    bind(name, Imf::FLOAT, plane, sizeof(float));  // OpenEXR converts HALF to float
   }
 
-  void bind_uint(const char* name, uint32_t* data) {
+  void check_uint(const char* name) const {
     const Imf::PixelType t = check_channel(name);
     if (t != Imf::UINT)
       throw IoError(path_ + ": channel '" + name + "' has pixel type " + type_name(t) +
                     ", expected UINT");
+  }
+
+  void bind_float(const char* name, float* plane) {
+    check_float(name);
+    bind(name, Imf::FLOAT, plane, sizeof(float));  // OpenEXR converts HALF to float
+  }
+
+  void bind_uint(const char* name, uint32_t* data) {
+    check_uint(name);
     bind(name, Imf::UINT, data, sizeof(uint32_t));
   }
 
@@ -232,6 +248,43 @@ auto with_input_file(const std::string& path, Body body) {
   }
 }
 
+// Everything read_frame checks before touching pixels, in the order it binds the channels, so
+// that a file passing here fails later only for its pixel data.
+FrameHeader inspect_header(const std::string& path, const ExrReader& r,
+                           const detail::ExpectedSize& expected) {
+  if (expected.width > 0 && (r.width() != expected.width || r.height() != expected.height))
+    throw IoError(path + ": frame is " + std::to_string(r.width()) + "x" +
+                  std::to_string(r.height()) + ", " + expected.source + " says " +
+                  std::to_string(expected.width) + "x" + std::to_string(expected.height));
+  if (const auto* v = r.attribute<Imf::IntAttribute>(kAttrFormatVersion);
+      v && v->value() != kFormatVersion)
+    throw IoError(path + ": unsupported " + kAttrFormatVersion + " " +
+                  std::to_string(v->value()) + " (this reader knows " +
+                  std::to_string(kFormatVersion) + ")");
+  FrameHeader h;
+  h.width = r.width();
+  h.height = r.height();
+  if (const auto* index = r.attribute<Imf::IntAttribute>(kAttrFrame)) {
+    h.has_index = true;
+    h.index = index->value();
+  }
+  r.attribute<Imf::M44fAttribute>(kAttrWorldToView);  // type checked here, read by read_frame
+  r.attribute<Imf::M44fAttribute>(kAttrViewToClip);
+  r.check_group(channel::kColor, false);
+  r.check_group(channel::kAlbedo, false);
+  r.check_group(channel::kNormal, false);
+  r.check_group(channel::kPosition, true);
+  r.check_float(channel::kDepth);
+  r.check_group(channel::kDepthGradient, false);
+  r.check_group(channel::kMotion, false);
+  r.check_uint(channel::kMeshId);
+  r.check_group(channel::kEmission, true);
+  r.check_group(channel::kReference, true);
+  r.check_group(channel::kDirect, true);
+  r.check_group(channel::kIndirect, true);
+  return h;
+}
+
 }  // namespace
 
 void write_frame(const std::string& path, const Frame& frame, const FrameStorage& storage) {
@@ -266,19 +319,10 @@ void write_frame(const std::string& path, const Frame& frame, const FrameStorage
 Frame detail::read_frame(const std::string& path, bool* has_index, const ExpectedSize& expected) {
   return with_input_file(path, [&](Imf::InputFile& file) {
     ExrReader r(path, file.header());
-    if (expected.width > 0 && (r.width() != expected.width || r.height() != expected.height))
-      throw IoError(path + ": frame is " + std::to_string(r.width()) + "x" +
-                    std::to_string(r.height()) + ", " + expected.source + " says " +
-                    std::to_string(expected.width) + "x" + std::to_string(expected.height));
-    if (const auto* v = r.attribute<Imf::IntAttribute>(kAttrFormatVersion);
-        v && v->value() != kFormatVersion)
-      throw IoError(path + ": unsupported " + kAttrFormatVersion + " " +
-                    std::to_string(v->value()) + " (this reader knows " +
-                    std::to_string(kFormatVersion) + ")");
+    const FrameHeader header = inspect_header(path, r, expected);
     Frame f;
-    const auto* index = r.attribute<Imf::IntAttribute>(kAttrFrame);
-    if (has_index) *has_index = index != nullptr;
-    f.index = index ? index->value() : 0;
+    if (has_index) *has_index = header.has_index;
+    f.index = header.index;
     if (const auto* m = r.attribute<Imf::M44fAttribute>(kAttrWorldToView))
       f.camera.world_to_view = from_m44f(m->value());
     if (const auto* m = r.attribute<Imf::M44fAttribute>(kAttrViewToClip))
@@ -305,6 +349,12 @@ Frame detail::read_frame(const std::string& path, bool* has_index, const Expecte
 }
 
 Frame read_frame(const std::string& path) { return detail::read_frame(path, nullptr); }
+
+FrameHeader read_frame_header(const std::string& path, const detail::ExpectedSize& expected) {
+  return with_input_file(path, [&](Imf::InputFile& file) {
+    return inspect_header(path, ExrReader(path, file.header()), expected);
+  });
+}
 
 void write_rgb_exr(const std::string& path, const Image& rgb) {
   if (rgb.empty() || rgb.channels() != 3)

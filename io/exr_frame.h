@@ -46,6 +46,16 @@ void write_frame(const std::string& path, const Frame& frame, const FrameStorage
 // has a data window other than (0,0)-(w-1,h-1).
 Frame read_frame(const std::string& path);
 
+// What a frame file's header says. read_frame_header checks the header as read_frame does
+// (data window, format version, attribute types, every required channel present with its pixel
+// type, optional groups all or nothing) without reading or allocating any pixels, so a whole
+// sequence can be validated before anything is written.
+struct FrameHeader {
+  int width = 0, height = 0;
+  bool has_index = false;  // svgf.frame present
+  int index = 0;           // svgf.frame; 0 when absent
+};
+
 namespace detail {
 // read_frame that also reports whether the file carried svgf.frame (Sequence::read needs it)
 // and, given an expected size (a manifest's), refuses another size from the header alone,
@@ -56,6 +66,10 @@ struct ExpectedSize {
 };
 Frame read_frame(const std::string& path, bool* has_frame_index, const ExpectedSize& expected = {});
 }  // namespace detail
+
+// Throws IoError naming the file (and channel) for everything read_frame would refuse before
+// reading pixels; given an expected size, for another size too.
+FrameHeader read_frame_header(const std::string& path, const detail::ExpectedSize& expected = {});
 
 // Writes a linear RGB image (channels R, G, B, FLOAT) atomically: the denoiser's output.
 void write_rgb_exr(const std::string& path, const Image& rgb);

@@ -1,7 +1,5 @@
 #include "io/sequence.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <climits>
 #include <cstdio>
@@ -179,14 +177,7 @@ void write_manifest(const std::string& dir, const Manifest& m) {
   j["frames"] = nlohmann::ordered_json::array();
   for (const auto& f : m.frames) j["frames"].push_back({{"file", f.name}, {"sha256", f.sha256}});
   j["camera_cuts"] = m.camera_cuts;
-  const std::string text = j.dump(2) + "\n";
-  write_atomically(path, [&](const std::string& tmp) {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw IoError(path + ": cannot open for writing");
-    out.write(text.data(), static_cast<std::streamsize>(text.size()));
-    out.close();
-    if (!out) throw IoError(path + ": write error");
-  });
+  write_file_atomically(path, j.dump(2) + "\n");
 }
 
 Sequence::Sequence(const std::string& dir) : dir_(dir), manifest_(read_manifest(dir)) {}
@@ -207,6 +198,12 @@ Frame Sequence::read(int k) const {
   return f;
 }
 
+FrameHeader Sequence::read_header(int k) const {
+  FrameHeader h = read_frame_header(path(k), {manifest_.width, manifest_.height, "manifest"});
+  if (!h.has_index) h.index = k;
+  return h;
+}
+
 bool Sequence::is_camera_cut(int k) const {
   return std::find(manifest_.camera_cuts.begin(), manifest_.camera_cuts.end(), k) !=
          manifest_.camera_cuts.end();
@@ -220,53 +217,20 @@ void Sequence::verify_checksum(int k) const {
     throw IoError(p + ": SHA-256 is " + actual + ", manifest says " + expected);
 }
 
-namespace {
-
-// Replacing an existing folder is only safe when it is (or was meant to be) a sequence: a wrong
-// `dir` such as the fixtures root must not be wiped.
-void check_replaceable(const std::string& dir) {
-  std::error_code ec;
-  if (!fs::exists(dir, ec)) return;
-  if (!fs::is_directory(dir, ec))
-    throw IoError(dir + ": exists and is not a folder; refusing to replace it");
-  if (!fs::is_empty(dir, ec) && !fs::exists(fs::path(dir) / kManifestName, ec))
-    throw IoError(dir + ": exists and holds no " + kManifestName + "; refusing to replace it");
-}
-
-}  // namespace
-
+// The manifest marks a folder as a sequence: only a sequence (or an empty folder) is replaced,
+// so a wrong `dir` such as the fixtures root is never wiped.
 SequenceWriter::SequenceWriter(const std::string& dir, const FrameStorage& storage)
-    : storage_(storage) {
-  fs::path p = fs::path(dir).lexically_normal();
-  if (!p.has_filename()) p = p.parent_path();  // "a/b/" -> "a/b": the temp must be a sibling
-  if (p.empty() || p == "." || p == "..")
-    throw std::invalid_argument("SequenceWriter: invalid folder '" + dir + "'");
-  dir_ = p.string();
-  tmp_dir_ = dir_ + ".tmp-" + std::to_string(static_cast<long>(::getpid()));
-  check_replaceable(dir_);
-  try {
-    fs::remove_all(tmp_dir_);  // left over by a crashed process that had our pid
-    fs::create_directories(tmp_dir_);
-  } catch (const fs::filesystem_error& e) {
-    throw IoError(tmp_dir_ + ": cannot create folder: " + e.code().message());
-  }
-}
-
-SequenceWriter::~SequenceWriter() {
-  if (committed_) return;
-  std::error_code ignored;
-  fs::remove_all(tmp_dir_, ignored);
-}
+    : folder_(dir, kManifestName), storage_(storage) {}
 
 void SequenceWriter::add(const Frame& frame) {
-  if (committed_) throw std::logic_error(dir_ + ": SequenceWriter::add after commit");
+  if (committed_) throw std::logic_error(folder_.dir() + ": SequenceWriter::add after commit");
   const int n = static_cast<int>(files_.size());
   if (n > 0 && (frame.width() != width_ || frame.height() != height_))
-    throw std::invalid_argument(dir_ + ": frame " + std::to_string(n) + " is " +
+    throw std::invalid_argument(folder_.dir() + ": frame " + std::to_string(n) + " is " +
                                 size_str(frame.width(), frame.height()) +
                                 ", earlier frames are " + size_str(width_, height_));
   const std::string name = frame_file_name(n);
-  const std::string path = (fs::path(tmp_dir_) / name).string();
+  const std::string path = (fs::path(folder_.path()) / name).string();
   write_frame(path, frame, storage_);
   files_.push_back({name, sha256_file(path)});
   width_ = frame.width();
@@ -274,38 +238,21 @@ void SequenceWriter::add(const Frame& frame) {
 }
 
 void SequenceWriter::commit(Manifest manifest) {
-  if (committed_) throw std::logic_error(dir_ + ": SequenceWriter::commit called twice");
+  if (committed_) throw std::logic_error(folder_.dir() + ": SequenceWriter::commit called twice");
   if (!files_.empty()) {
     if (manifest.width == 0 && manifest.height == 0) {
       manifest.width = width_;
       manifest.height = height_;
     } else if (manifest.width != width_ || manifest.height != height_) {
-      throw std::invalid_argument(dir_ + ": manifest says " +
+      throw std::invalid_argument(folder_.dir() + ": manifest says " +
                                   size_str(manifest.width, manifest.height) + ", frames are " +
                                   size_str(width_, height_));
     }
   }
   manifest.frames = files_;
-  write_manifest(tmp_dir_, manifest);
-
-  check_replaceable(dir_);
-  // Move an old folder aside rather than deleting it first: if the rename fails it comes back.
-  const std::string old_dir = dir_ + ".old-" + std::to_string(static_cast<long>(::getpid()));
-  std::error_code ec;
-  const bool had_old = fs::exists(dir_, ec);
-  if (had_old) {
-    fs::remove_all(old_dir, ec);
-    fs::rename(dir_, old_dir, ec);
-    if (ec) throw IoError(dir_ + ": cannot move the existing folder aside: " + ec.message());
-  }
-  fs::rename(tmp_dir_, dir_, ec);
-  if (ec) {
-    std::error_code ignored;
-    if (had_old) fs::rename(old_dir, dir_, ignored);
-    throw IoError(dir_ + ": cannot rename " + tmp_dir_ + " into place: " + ec.message());
-  }
+  write_manifest(folder_.path(), manifest);
+  folder_.commit();
   committed_ = true;
-  if (had_old) fs::remove_all(old_dir, ec);
 }
 
 }  // namespace svgf::io

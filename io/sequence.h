@@ -7,6 +7,7 @@
 #include "core/frame.h"
 #include "io/exr_frame.h"
 #include "io/io_error.h"
+#include "io/staged_folder.h"
 
 namespace svgf::io {
 
@@ -44,7 +45,10 @@ class Sequence {
   int size() const { return static_cast<int>(manifest_.frames.size()); }
   std::string path(int k) const;
   // Reads frame k; throws IoError if its size differs from the manifest's (naming the file).
+  // Its index is svgf.frame, or k when the file has none.
   Frame read(int k) const;
+  // Frame k's header, checked as read(k) checks it, without reading pixels; the index as read().
+  FrameHeader read_header(int k) const;
   bool is_camera_cut(int k) const;
   // Throws IoError naming the file when frame k's SHA-256 differs from the manifest's.
   void verify_checksum(int k) const;
@@ -54,21 +58,18 @@ class Sequence {
   Manifest manifest_;
 };
 
-// Writes a sequence into `dir` atomically and frame by frame: frames go into a temporary sibling
-// folder, and commit() writes the manifest (frame names and SHA-256 sums filled in) and renames
-// the folder to `dir`, replacing an existing one. Destroyed without commit(): the temporary
-// folder is removed and `dir` is untouched.
+// Writes a sequence into `dir` atomically and frame by frame: frames go into a staging sibling
+// folder (io::StagedFolder), and commit() writes the manifest (frame names and SHA-256 sums
+// filled in) and swaps the folder in, replacing an existing sequence. Destroyed without
+// commit(): the staging folder is removed and `dir` is untouched.
 class SequenceWriter {
  public:
   SequenceWriter(const std::string& dir, const FrameStorage& storage);
-  ~SequenceWriter();
-  SequenceWriter(const SequenceWriter&) = delete;
-  SequenceWriter& operator=(const SequenceWriter&) = delete;
   void add(const Frame& frame);  // written as frame_file_name(number of frames added so far)
   void commit(Manifest manifest);
 
  private:
-  std::string dir_, tmp_dir_;
+  StagedFolder folder_;
   FrameStorage storage_;
   std::vector<ManifestFile> files_;
   bool committed_ = false;

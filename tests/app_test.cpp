@@ -1,4 +1,5 @@
 // The svgf denoise command end to end on a generated sequence: outputs, report, bad input.
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -12,35 +13,22 @@
 #include <nlohmann/json.hpp>
 
 #include "app/denoise_command.h"
+#include "app/frame_order.h"
 #include "app/options.h"
 #include "io/exr_frame.h"
 #include "io/sequence.h"
-#include "synthetic_sequence.h"
+#include "app_test_support.h"
 #include "test_support.h"
 
 namespace fs = std::filesystem;
 using namespace svgf;
 
-namespace {
-
-fs::path scratch(const std::string& name) {
-  const fs::path p = fs::temp_directory_path() / ("svgf_app_test_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(p);
-  return p;
-}
-
-fs::path write_synthetic(const fs::path& dir, int frames) {
-  test::SyntheticScene scene;
-  io::SequenceWriter writer(dir.string(), io::FrameStorage{});
-  for (int k = 0; k < frames; ++k) writer.add(scene.frame(k));
-  io::Manifest m;
-  m.scene = "synthetic";
-  m.generator = "app_test";
-  writer.commit(m);
-  return dir;
-}
-
-}  // namespace
+using test::file_bytes;
+using test::file_names;
+using test::read_json;
+using test::scratch;
+using test::write_numbered;
+using test::write_synthetic;
 
 TEST_CASE("svgf denoise writes frames, previews and a report", "[app]") {
   const fs::path in = write_synthetic(scratch("in"), 4), out = scratch("out");
@@ -60,7 +48,7 @@ TEST_CASE("svgf denoise writes frames, previews and a report", "[app]") {
   for (const auto& e : fs::recursive_directory_iterator(out))
     REQUIRE(e.path().filename().string().find(".tmp") == std::string::npos);
   fs::remove_all(in);
-  fs::remove_all(out);
+  test::remove_output(out);
 }
 
 TEST_CASE("svgf denoise: bad input is an error naming the file", "[app]") {
@@ -83,17 +71,8 @@ TEST_CASE("svgf denoise: bad input is an error naming the file", "[app]") {
   REQUIRE_THROWS_WITH(app::denoise_command({in.string(), out.string(), "--iterations", "x"}),
                       Catch::Contains("--iterations"));
   fs::remove_all(in);
-  fs::remove_all(out);
+  test::remove_output(out);
 }
-
-namespace {
-
-std::string file_bytes(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
-}
-
-}  // namespace
 
 // Issue 15: `svgf denoise X X` overwrote every input frame. An output folder that is the input
 // folder, or lies inside it, or holds it, is refused before anything is written, and the input
@@ -177,7 +156,7 @@ TEST_CASE("svgf denoise verifies the frames' SHA-256 before writing anything", "
                                 "--no-verify"}) == 0);
   REQUIRE(fs::exists(out / io::frame_file_name(2)));
   fs::remove_all(in);
-  fs::remove_all(out);
+  test::remove_output(out);
 }
 
 TEST_CASE("svgf denoise --method wavelet: its flags reach the filter, bad values name the flag",
@@ -203,5 +182,155 @@ TEST_CASE("svgf denoise --method wavelet: its flags reach the filter, bad values
                                             "--method", "wavelet", "--phi-color", "5"}),
                       Catch::Contains("--phi-color applies to svgf, not to wavelet"));
   fs::remove_all(in);
-  fs::remove_all(out);
+  test::remove_output(out);
+}
+
+// Issue 15, item 2: frames were read in the manifest's order and outputs numbered by position.
+// They are now read by frame number (svgf.frame) and each output keeps its input's number, so a
+// shuffled manifest gives the same bytes as the ordered one.
+TEST_CASE("svgf denoise reads frames by frame number, not by manifest order", "[app]") {
+  const fs::path ordered = write_numbered(scratch("order_in"), {0, 1, 2});
+  const fs::path shuffled = write_numbered(scratch("shuffled_in"), {2, 0, 1});
+  const fs::path out_a = scratch("order_out"), out_b = scratch("shuffled_out");
+  for (const auto& [in, out] : {std::pair{ordered, out_a}, std::pair{shuffled, out_b}})
+    REQUIRE(app::denoise_command({in.string(), out.string(), "--backend", "cpu", "--threads", "2",
+                                  "--no-preview"}) == 0);
+  for (int k = 0; k < 3; ++k) {
+    const std::string name = io::frame_file_name(k);
+    INFO(name);
+    REQUIRE(file_bytes(out_b / name) == file_bytes(out_a / name));
+  }
+  const auto report = read_json(out_b / "report.json");
+  REQUIRE(report["frames"].size() == 3);
+  for (int k = 0; k < 3; ++k) {
+    REQUIRE(report["frames"][k]["frame"] == k);
+    REQUIRE(report["frames"][k]["input"] == io::frame_file_name((k + 1) % 3));  // 2, 0, 1
+  }
+  for (const auto& p : {ordered, shuffled, out_a, out_b}) fs::remove_all(p);
+}
+
+// A gap in the numbering (a dropped frame) restarts the history, as a camera cut does: frame 5
+// must not be reprojected from frame 2. Outputs keep their numbers across the gap.
+TEST_CASE("svgf denoise restarts the history at a gap and keeps the frame numbers", "[app]") {
+  const fs::path gapped = write_numbered(scratch("gap_in"), {0, 1, 2, 5, 6});
+  const fs::path tail = write_numbered(scratch("gap_tail_in"), {5, 6});
+  const fs::path out = scratch("gap_out"), tail_out = scratch("gap_tail_out");
+  for (const auto& [in, o] : {std::pair{gapped, out}, std::pair{tail, tail_out}})
+    REQUIRE(app::denoise_command({in.string(), o.string(), "--backend", "cpu", "--threads", "2",
+                                  "--no-preview"}) == 0);
+  REQUIRE(file_names(out) == std::vector<std::string>{"frame_0000.exr", "frame_0001.exr",
+                                                      "frame_0002.exr", "frame_0005.exr",
+                                                      "frame_0006.exr", "report.csv",
+                                                      "report.json"});
+  // Frames 5 and 6 come out as if the sequence started at 5.
+  for (const char* name : {"frame_0005.exr", "frame_0006.exr"}) {
+    INFO(name);
+    REQUIRE(file_bytes(out / name) == file_bytes(tail_out / name));
+  }
+  const auto report = read_json(out / "report.json");
+  REQUIRE(report["frames"][3]["frame"] == 5);
+  REQUIRE(report["frames"][3]["history_reset"] == "gap: frames 3 to 4 missing");
+  REQUIRE(!report["frames"][4].contains("history_reset"));
+  for (const auto& p : {gapped, tail, out, tail_out}) fs::remove_all(p);
+}
+
+TEST_CASE("svgf denoise refuses two files with one frame number, naming both", "[app]") {
+  const fs::path in = write_numbered(scratch("dup_in"), {0, 1, 1}), out = scratch("dup_out");
+  REQUIRE_THROWS_WITH(app::denoise_command({in.string(), out.string(), "--backend", "cpu"}),
+                      Catch::Contains((in / "frame_0001.exr").string()) &&
+                          Catch::Contains((in / "frame_0002.exr").string()) &&
+                          Catch::Contains("both frame 1"));
+  REQUIRE(!fs::exists(out));
+  REQUIRE_THAT(read_json(out.string() + ".failed-report.json")["error"].get<std::string>(),
+               Catch::Contains("both frame 1"));
+  fs::remove_all(in);
+  test::remove_output(out);
+}
+
+// Every frame's header is checked before anything is written, even with --no-verify: a later
+// frame that lacks its channels stops the run with no output folder.
+TEST_CASE("svgf denoise checks every frame's header before writing anything", "[app]") {
+  const fs::path in = write_synthetic(scratch("header_in"), 3), out = scratch("header_out");
+  io::write_rgb_exr((in / io::frame_file_name(2)).string(), Image(64, 48, 3));
+  REQUIRE_THROWS_WITH(app::denoise_command({in.string(), out.string(), "--backend", "cpu",
+                                            "--no-verify"}),
+                      Catch::Contains(io::frame_file_name(2)) && Catch::Contains("color.R"));
+  REQUIRE(!fs::exists(out));
+  fs::remove_all(in);
+  test::remove_output(out);
+}
+
+TEST_CASE("plan_frames: order, restarts and refusals", "[app]") {
+  using app::plan_frames;
+  const auto plan = plan_frames({{"a", 4}, {"b", 0}, {"c", 1}, {"d", 3}, {"e", 7}}, {3}, "m");
+  std::vector<std::pair<int, std::string>> got;
+  for (const auto& p : plan) got.push_back({p.number, p.reset});
+  REQUIRE(got == std::vector<std::pair<int, std::string>>{{0, "first frame"},
+                                                          {1, ""},
+                                                          {3, "gap: frame 2 missing"},
+                                                          {4, ""},
+                                                          {7, "gap: frames 5 to 6 missing"}});
+  REQUIRE(plan[0].position == 1);
+  REQUIRE(plan_frames({{"a", 0}, {"b", 1}}, {1}, "m")[1].reset == "camera cut");
+  REQUIRE_THROWS_WITH(plan_frames({{"a", 0}, {"b", -1}}, {}, "m"),
+                      Catch::Contains("b") && Catch::Contains("negative"));
+  REQUIRE_THROWS_WITH(plan_frames({{"a", 0}, {"b", 1}}, {2}, "m"),
+                      Catch::Contains("m: camera cut at frame 2"));
+}
+
+// Issue 15, item 3: outputs were written straight into OUT_DIR, so a run that failed half-way
+// left new frames mixed with the old output and its old report. A run now writes into a staging
+// folder and swaps it in at the end: a failed run leaves the previous output byte for byte, no
+// staging folder, and a failure report beside OUT_DIR.
+TEST_CASE("svgf denoise failing half-way leaves the previous output as it was", "[app]") {
+  const fs::path in = write_synthetic(scratch("halfway_in"), 4), out = scratch("halfway_out");
+  REQUIRE(app::denoise_command({in.string(), out.string(), "--backend", "cpu", "--threads", "2"}) == 0);
+  const auto before = test::snapshot(out);
+  REQUIRE(before.count("report.json"));
+  // Frame 3's header is fine, its pixel data cut short: only reading its pixels fails.
+  const fs::path frame3 = in / io::frame_file_name(3);
+  const std::string good_frame3 = file_bytes(frame3);
+  fs::resize_file(frame3, fs::file_size(frame3) - 64);
+  REQUIRE_THROWS_WITH(app::denoise_command({in.string(), out.string(), "--backend", "cpu",
+                                            "--threads", "2", "--iterations", "2", "--no-verify"}),
+                      Catch::Contains(frame3.string()));
+  REQUIRE(test::snapshot(out) == before);
+  REQUIRE(test::leftovers(out).empty());
+  const fs::path failure = out.string() + ".failed-report.json";
+  const auto report = read_json(failure);
+  REQUIRE(report["status"] == "failed");
+  REQUIRE(report["stage"] == "denoising");
+  REQUIRE(report["frame"] == 3);
+  REQUIRE(report["file"] == frame3.string());
+  REQUIRE(report["frames_written"] == 3);
+  REQUIRE_THAT(report["error"].get<std::string>(), Catch::Contains(frame3.string()));
+  // The next good run replaces the output and removes the failure report, which would lie.
+  { std::ofstream(frame3, std::ios::binary) << good_frame3; }
+  REQUIRE(app::denoise_command({in.string(), out.string(), "--backend", "cpu", "--threads", "2",
+                                "--iterations", "2", "--no-preview"}) == 0);
+  REQUIRE(!fs::exists(failure));
+  REQUIRE(!fs::exists(out / "preview"));  // replaced as a whole, not merged
+  REQUIRE(file_bytes(out / "report.json") != before.at("report.json"));
+  REQUIRE(test::leftovers(out).empty());
+  fs::remove_all(in);
+  test::remove_output(out);
+}
+
+// OUT_DIR is replaced as a whole, so it must be absent, empty or an earlier output (report.json):
+// a wrong path holding other files is a usage error before anything is read.
+TEST_CASE("svgf denoise refuses to replace a folder that is not an earlier output", "[app]") {
+  const fs::path in = write_synthetic(scratch("replace_in"), 1), out = scratch("replace_out");
+  fs::create_directories(out);
+  { std::ofstream(out / "notes.txt") << "keep"; }
+  REQUIRE_THROWS_AS(app::denoise_command({in.string(), out.string(), "--backend", "cpu"}),
+                    app::UsageError);
+  REQUIRE(file_names(out) == std::vector<std::string>{"notes.txt"});
+  // Nor may the input be a leftover that a run into OUT_DIR would clear.
+  const fs::path leftover = out.string() + ".old-1";
+  fs::rename(in, leftover);
+  test::remove_output(out);
+  REQUIRE_THROWS_WITH(app::denoise_command({leftover.string(), out.string(), "--backend", "cpu"}),
+                      Catch::Contains("leftover"));
+  REQUIRE(fs::exists(leftover / "manifest.json"));
+  fs::remove_all(leftover);
 }

@@ -424,6 +424,59 @@ TEST_CASE("read_frame errors name the file and the channel", "[io][exr][errors]"
   }
 }
 
+// Issue 15: a sequence is validated before any output is written. read_frame_header makes every
+// check read_frame makes before the pixels, with the same message, and reads no pixels: a file
+// whose pixel data is cut short passes it and fails read_frame.
+TEST_CASE("read_frame_header refuses what read_frame refuses, without the pixels",
+          "[io][exr][errors]") {
+  TempDir tmp;
+  const std::string path = tmp / "f.exr";
+  auto same_error = [&](const io::detail::ExpectedSize& expected = {}) {
+    const std::string message = io_error_of([&] { io::detail::read_frame(path, nullptr, expected); });
+    CHECK_THAT(message, Contains(path));
+    CHECK(io_error_of([&] { io::read_frame_header(path, expected); }) == message);
+  };
+  SECTION("missing channel") {
+    write_raw_exr(path, 5, 4, without(required_channels(), "albedo.G"));
+    same_error();
+  }
+  SECTION("mesh_id stored as FLOAT") {
+    write_raw_exr(path, 5, 4, with_type(required_channels(), "mesh_id", Imf::FLOAT));
+    same_error();
+  }
+  SECTION("partly present optional group") {
+    ChannelTypes c = required_channels();
+    c.push_back({"direct.R", Imf::FLOAT});
+    write_raw_exr(path, 5, 4, c);
+    same_error();
+  }
+  SECTION("data window not at 0,0") {
+    write_raw_exr(path, 5, 4, required_channels(), 2, 1);
+    same_error();
+  }
+  SECTION("size other than expected") {
+    write_raw_exr(path, 5, 4, required_channels());
+    same_error({5, 5, "manifest"});
+  }
+  SECTION("a good header with its pixel data cut short") {
+    Frame f = random_frame(40, 30, 5);
+    io::write_frame(path, f);
+    fs::resize_file(path, fs::file_size(path) - 64);
+    const io::FrameHeader h = io::read_frame_header(path, {40, 30, "manifest"});
+    CHECK(h.width == 40);
+    CHECK(h.height == 30);
+    CHECK(h.has_index);
+    CHECK(h.index == f.index);
+    CHECK_THAT(io_error_of([&] { io::read_frame(path); }), Contains(path));
+  }
+  SECTION("no svgf.frame") {
+    write_raw_exr(path, 5, 4, required_channels());
+    const io::FrameHeader h = io::read_frame_header(path);
+    CHECK_FALSE(h.has_index);
+    CHECK(h.width == 5);
+  }
+}
+
 TEST_CASE("write_frame rejects an inconsistent frame", "[io][exr][errors]") {
   TempDir tmp;
   Frame f = random_frame(8, 4, 2);
@@ -591,6 +644,7 @@ TEST_CASE("SequenceWriter round trip", "[io][sequence]") {
     CHECK_NOTHROW(seq.verify_checksum(k));
     const Frame r = seq.read(k);
     CHECK(r.index == frames[k].index);  // from svgf.frame
+    CHECK(seq.read_header(k).index == frames[k].index);
     CHECK(bitwise_equal(r.color, frames[k].color));
     CHECK(half_equal(r.normal, frames[k].normal));
     CHECK(r.mesh_id == frames[k].mesh_id);
@@ -718,7 +772,10 @@ TEST_CASE("Sequence::read numbers frames without svgf.frame by position", "[io][
   }
   io::write_manifest(dir, m);
   const io::Sequence seq(dir);
-  for (int k = 0; k < 3; ++k) CHECK(seq.read(k).index == k);
+  for (int k = 0; k < 3; ++k) {
+    CHECK(seq.read(k).index == k);
+    CHECK(seq.read_header(k).index == k);
+  }
 }
 
 TEST_CASE("read_manifest errors name the manifest and the key", "[io][sequence][errors]") {
