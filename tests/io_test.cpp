@@ -826,6 +826,15 @@ TEST_CASE("read_manifest errors name the manifest and the key", "[io][sequence][
     CHECK_THAT(io_error_of([&] { io::read_manifest(dir); }),
                Contains(path) && Contains("'frames[0].file'"));
   }
+  SECTION("frame name with a NUL, where the OS would end the path") {
+    // "frame_0000.exr\0x" would open frame_0000.exr: two distinct names, one file.
+    edited("frame_0000.exr", "frame_0000.exr\\u0000x");
+    CHECK_THAT(io_error_of([&] { io::read_manifest(dir); }),
+               Contains(path) && Contains("'frames[0].file' is not a plain file name"));
+    io::Manifest nul_name = good;
+    nul_name.frames[0].name = std::string("frame_0000.exr\0x", 16);
+    CHECK_THROWS_AS(io::write_manifest(dir, nul_name), std::invalid_argument);
+  }
   SECTION("camera cut outside the frames") {
     edited("\"camera_cuts\": []", "\"camera_cuts\": [1]");
     CHECK_THAT(io_error_of([&] { io::read_manifest(dir); }),
