@@ -1,9 +1,11 @@
 #include "io/exr_frame.h"
 
+#include <Iex.h>
 #include <ImfChannelList.h>
 #include <ImfCompression.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
+#include <ImfIO.h>
 #include <ImfInputFile.h>
 #include <ImfIntAttribute.h>
 #include <ImfMatrixAttribute.h>
@@ -11,6 +13,7 @@
 #include <ImfVersion.h>
 #include <Imath/half.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -234,18 +237,60 @@ class ExrReader {
   Imf::FrameBuffer frame_buffer_;
 };
 
+// Runs `open_and_read()`; library exceptions become IoErrors naming `name`.
+template <class OpenAndRead>
+auto translate_errors(const std::string& name, OpenAndRead open_and_read) {
+  try {
+    return open_and_read();
+  } catch (const IoError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw IoError(name + ": " + one_line(e.what()));
+  }
+}
+
 // Opens `path` and runs `body(file)`; library exceptions become IoErrors naming the file.
 template <class Body>
 auto with_input_file(const std::string& path, Body body) {
   check_exr_file(path);
-  try {
+  return translate_errors(path, [&] {
     Imf::InputFile file(path.c_str());
     return body(file);
-  } catch (const IoError&) {
-    throw;
-  } catch (const std::exception& e) {
-    throw IoError(path + ": " + one_line(e.what()));
+  });
+}
+
+// The bytes of an OpenEXR file held by the caller, read in place. Reads past the end throw,
+// as IStream requires (OpenEXR turns a truncated file into an exception, never a short read).
+class MemoryIStream : public Imf::IStream {
+ public:
+  MemoryIStream(const char* data, size_t size, const std::string& name)
+      : Imf::IStream(name.c_str()), data_(data), size_(size) {}
+  bool read(char c[], int n) override {
+    if (n < 0 || pos_ > size_ || static_cast<uint64_t>(n) > size_ - pos_)
+      throw Iex::InputExc("unexpected end of file");
+    if (n > 0) std::memcpy(c, data_ + pos_, static_cast<size_t>(n));
+    pos_ += static_cast<uint64_t>(n);
+    return pos_ < size_;
   }
+  uint64_t tellg() override { return pos_; }
+  void seekg(uint64_t pos) override { pos_ = pos; }  // past the end: the next read throws
+
+ private:
+  const char* data_;
+  uint64_t size_;
+  uint64_t pos_ = 0;
+};
+
+// with_input_file for the bytes of a file; `name` stands for the file in messages.
+template <class Body>
+auto with_input_bytes(const char* data, size_t size, const std::string& name, Body body) {
+  if (size < 4 || !Imf::isImfMagic(data))
+    throw IoError(name + ": not an OpenEXR file (bad magic number)");
+  return translate_errors(name, [&] {
+    MemoryIStream stream(data, size, name);
+    Imf::InputFile file(stream);
+    return body(file);
+  });
 }
 
 // Everything read_frame checks before touching pixels, in the order it binds the channels, so
@@ -316,35 +361,45 @@ void write_frame(const std::string& path, const Frame& frame, const FrameStorage
   write_exr(path, w);
 }
 
+namespace {
+
+// The frame in `file`, checked as read_frame documents; `path` names the file in messages.
+Frame read_frame_from(Imf::InputFile& file, const std::string& path, bool* has_index,
+                      const detail::ExpectedSize& expected) {
+  ExrReader r(path, file.header());
+  const FrameHeader header = inspect_header(path, r, expected);
+  Frame f;
+  if (has_index) *has_index = header.has_index;
+  f.index = header.index;
+  if (const auto* m = r.attribute<Imf::M44fAttribute>(kAttrWorldToView))
+    f.camera.world_to_view = from_m44f(m->value());
+  if (const auto* m = r.attribute<Imf::M44fAttribute>(kAttrViewToClip))
+    f.camera.view_to_clip = from_m44f(m->value());
+
+  const int w = r.width(), h = r.height();
+  f.color = r.read_group(channel::kColor, false);
+  f.albedo = r.read_group(channel::kAlbedo, false);
+  f.normal = r.read_group(channel::kNormal, false);
+  f.position = r.read_group(channel::kPosition, true);
+  f.depth = Image(w, h, 1);
+  r.bind_float(channel::kDepth, f.depth.plane(0));
+  f.depth_gradient = r.read_group(channel::kDepthGradient, false);
+  f.motion = r.read_group(channel::kMotion, false);
+  f.mesh_id.assign(static_cast<size_t>(w) * h, 0u);
+  r.bind_uint(channel::kMeshId, f.mesh_id.data());
+  f.emission = r.read_group(channel::kEmission, true);
+  f.reference = r.read_group(channel::kReference, true);
+  f.direct = r.read_group(channel::kDirect, true);
+  f.indirect = r.read_group(channel::kIndirect, true);
+  r.read(file);
+  return f;
+}
+
+}  // namespace
+
 Frame detail::read_frame(const std::string& path, bool* has_index, const ExpectedSize& expected) {
   return with_input_file(path, [&](Imf::InputFile& file) {
-    ExrReader r(path, file.header());
-    const FrameHeader header = inspect_header(path, r, expected);
-    Frame f;
-    if (has_index) *has_index = header.has_index;
-    f.index = header.index;
-    if (const auto* m = r.attribute<Imf::M44fAttribute>(kAttrWorldToView))
-      f.camera.world_to_view = from_m44f(m->value());
-    if (const auto* m = r.attribute<Imf::M44fAttribute>(kAttrViewToClip))
-      f.camera.view_to_clip = from_m44f(m->value());
-
-    const int w = r.width(), h = r.height();
-    f.color = r.read_group(channel::kColor, false);
-    f.albedo = r.read_group(channel::kAlbedo, false);
-    f.normal = r.read_group(channel::kNormal, false);
-    f.position = r.read_group(channel::kPosition, true);
-    f.depth = Image(w, h, 1);
-    r.bind_float(channel::kDepth, f.depth.plane(0));
-    f.depth_gradient = r.read_group(channel::kDepthGradient, false);
-    f.motion = r.read_group(channel::kMotion, false);
-    f.mesh_id.assign(static_cast<size_t>(w) * h, 0u);
-    r.bind_uint(channel::kMeshId, f.mesh_id.data());
-    f.emission = r.read_group(channel::kEmission, true);
-    f.reference = r.read_group(channel::kReference, true);
-    f.direct = r.read_group(channel::kDirect, true);
-    f.indirect = r.read_group(channel::kIndirect, true);
-    r.read(file);
-    return f;
+    return read_frame_from(file, path, has_index, expected);
   });
 }
 
@@ -353,6 +408,12 @@ Frame read_frame(const std::string& path) { return detail::read_frame(path, null
 FrameHeader read_frame_header(const std::string& path, const detail::ExpectedSize& expected) {
   return with_input_file(path, [&](Imf::InputFile& file) {
     return inspect_header(path, ExrReader(path, file.header()), expected);
+  });
+}
+
+Frame read_frame_from_memory(const char* data, size_t size, const std::string& name) {
+  return with_input_bytes(data, size, name, [&](Imf::InputFile& file) {
+    return read_frame_from(file, name, nullptr, {});
   });
 }
 

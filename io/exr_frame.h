@@ -1,5 +1,6 @@
 #pragma once
 // The project's frame file: one multi-channel OpenEXR per frame (docs/frame-format.md).
+#include <cstddef>
 #include <string>
 
 #include "core/frame.h"
@@ -45,6 +46,9 @@ void write_frame(const std::string& path, const Frame& frame, const FrameStorage
 // is not an OpenEXR file, lacks a required channel, has a channel of the wrong pixel type, or
 // has a data window other than (0,0)-(w-1,h-1).
 Frame read_frame(const std::string& path);
+// read_frame from the bytes of a frame file (a frame held in memory, a fuzzer's input); `name`
+// stands for the file in error messages. The same checks and errors.
+Frame read_frame_from_memory(const char* data, size_t size, const std::string& name);
 
 // What a frame file's header says. read_frame_header checks the header as read_frame does
 // (data window, format version, attribute types, every required channel present with its pixel

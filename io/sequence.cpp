@@ -23,9 +23,10 @@ std::string manifest_path(const std::string& dir) { return (fs::path(dir) / kMan
 
 std::string size_str(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
 
+// No NUL either: the OS ends a path there, so "a.exr\0x" would open a.exr under another name.
 bool is_plain_file_name(const std::string& s) {
   return !s.empty() && s != "." && s != ".." && s.find('/') == std::string::npos &&
-         s.find('\\') == std::string::npos;
+         s.find('\\') == std::string::npos && s.find('\0') == std::string::npos;
 }
 
 bool is_sha256_hex(const std::string& s) {

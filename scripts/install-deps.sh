@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Installs, from Debian 12's own packages, whatever the build, tests, fixture tool and charts
-# need and is not yet on this machine. Uses sudo when not root. Safe to run repeatedly.
+# Installs, from Debian 12's own packages, whatever the build, tests, fuzz targets, fixture tool
+# and charts need and is not yet on this machine. Uses sudo when not root. Safe to run repeatedly.
 set -euo pipefail
 packages=(
   build-essential cmake pkg-config
@@ -13,6 +13,7 @@ packages=(
   catch2                # tests (Catch2 2.13)
   libopencv-dev libopencv-contrib-dev   # independent checks (imgproc, ximgproc, quality)
   gnuplot-nox           # quality-vs-speed charts
+  clang libclang-rt-14-dev   # fuzz targets: libFuzzer and clang's sanitizer runtimes (scripts/fuzz.sh)
 )
 missing=()
 for p in "${packages[@]}"; do

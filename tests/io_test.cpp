@@ -477,6 +477,55 @@ TEST_CASE("read_frame_header refuses what read_frame refuses, without the pixels
   }
 }
 
+TEST_CASE("read_frame_from_memory reads what read_frame reads", "[io][exr]") {
+  TempDir tmp;
+  const std::string path = tmp / "f.exr";
+  io::write_frame(path, random_frame(9, 6, 5));
+  const std::string bytes = read_text(path);
+  const Frame from_file = io::read_frame(path);
+  const Frame r = io::read_frame_from_memory(bytes.data(), bytes.size(), "in memory");
+  CHECK(r.index == from_file.index);
+  CHECK(bitwise_equal(r.color, from_file.color));
+  CHECK(bitwise_equal(r.albedo, from_file.albedo));
+  CHECK(bitwise_equal(r.normal, from_file.normal));
+  CHECK(bitwise_equal(r.position, from_file.position));
+  CHECK(bitwise_equal(r.depth, from_file.depth));
+  CHECK(bitwise_equal(r.depth_gradient, from_file.depth_gradient));
+  CHECK(bitwise_equal(r.motion, from_file.motion));
+  CHECK(bitwise_equal(r.emission, from_file.emission));
+  CHECK(bitwise_equal(r.reference, from_file.reference));
+  CHECK(bitwise_equal(r.direct, from_file.direct));
+  CHECK(bitwise_equal(r.indirect, from_file.indirect));
+  CHECK(r.mesh_id == from_file.mesh_id);
+  CHECK(r.camera.world_to_view == from_file.camera.world_to_view);
+  CHECK(r.camera.view_to_clip == from_file.camera.view_to_clip);
+}
+
+TEST_CASE("read_frame_from_memory errors name the given name", "[io][exr][errors]") {
+  TempDir tmp;
+  const std::string path = tmp / "f.exr";
+  io::write_frame(path, random_frame(40, 30, 1));
+  const std::string bytes = read_text(path);
+  SECTION("no bytes") {
+    CHECK(io_error_of([] { io::read_frame_from_memory(nullptr, 0, "mem"); }) ==
+          "mem: not an OpenEXR file (bad magic number)");
+  }
+  SECTION("text") {
+    const std::string text = "this is not an image\n";
+    CHECK(io_error_of([&] { io::read_frame_from_memory(text.data(), text.size(), "mem"); }) ==
+          "mem: not an OpenEXR file (bad magic number)");
+  }
+  SECTION("truncated anywhere") {
+    // Cut in the header, in the offset table and in the pixels: the stream refuses to read
+    // past the end, which OpenEXR reports.
+    for (const size_t size : {size_t{4}, size_t{100}, bytes.size() / 2, bytes.size() - 1}) {
+      CAPTURE(size);
+      CHECK_THAT(io_error_of([&] { io::read_frame_from_memory(bytes.data(), size, "mem"); }),
+                 Catch::Matchers::StartsWith("mem: "));
+    }
+  }
+}
+
 TEST_CASE("write_frame rejects an inconsistent frame", "[io][exr][errors]") {
   TempDir tmp;
   Frame f = random_frame(8, 4, 2);
@@ -833,6 +882,15 @@ TEST_CASE("read_manifest errors name the manifest and the key", "[io][sequence][
     edited("frame_0000.exr", "../frame_0000.exr");
     CHECK_THAT(io_error_of([&] { io::read_manifest(dir); }),
                Contains(path) && Contains("'frames[0].file'"));
+  }
+  SECTION("frame name with a NUL, where the OS would end the path") {
+    // "frame_0000.exr\0x" would open frame_0000.exr: two distinct names, one file.
+    edited("frame_0000.exr", "frame_0000.exr\\u0000x");
+    CHECK_THAT(io_error_of([&] { io::read_manifest(dir); }),
+               Contains(path) && Contains("'frames[0].file' is not a plain file name"));
+    io::Manifest nul_name = good;
+    nul_name.frames[0].name = std::string("frame_0000.exr\0x", 16);
+    CHECK_THROWS_AS(io::write_manifest(dir, nul_name), std::invalid_argument);
   }
   SECTION("camera cut outside the frames") {
     edited("\"camera_cuts\": []", "\"camera_cuts\": [1]");
