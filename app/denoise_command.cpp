@@ -47,7 +47,7 @@ const char* const kUsageHead =
     "SIGINT or SIGTERM stopped it).\n"
     "\n"
     "options:\n"
-    "  --method M                svgf, gaussian, wavelet, jbf, jbf-atrous (default svgf)\n"
+    "  --method M                svgf, gaussian, wavelet, jbf, jbf-atrous, bmfr (default svgf)\n"
     "  --backend cpu|cuda|auto   where to run (default auto: CUDA if a device is present)\n"
     "  --mode exact|fast         exact: bitwise CPU == GPU; fast: GPU only (default exact)\n"
     "  --threads N               CPU threads, 0 = all cores (default 0)\n"

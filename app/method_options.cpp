@@ -28,7 +28,14 @@ const char* const kMethodParamUsage =
     "  --jbf-sigma-normal S      jbf, jbf-atrous: normal angle scale, radians (default 0.1)\n"
     "  --jbf-sigma-plane S       jbf, jbf-atrous: tangent-plane distance scale (default 0.1)\n"
     "  --jbf-alpha A             jbf, jbf-atrous: temporal blend, 1 = no history (default 0.2)\n"
-    "  --jbf-clamp-k K           jbf, jbf-atrous: history clamp, mean +- K sigma (default 1)\n";
+    "  --jbf-clamp-k K           jbf, jbf-atrous: history clamp, mean +- K sigma (default 1)\n"
+    "  --bmfr-rank S             bmfr: rank-deficient blocks: noise (the paper's) or skip (default noise)\n"
+    "  --bmfr-noise A            bmfr: feature noise amplitude for noise (default 0.01)\n"
+    "  --bmfr-skip-threshold T   bmfr: relative column norm under which skip drops it (default 0.001)\n"
+    "  --bmfr-pre-alpha A        bmfr: noisy-color temporal blend floor (default 0.2)\n"
+    "  --bmfr-post-alpha A       bmfr: output temporal blend floor (default 0.1)\n"
+    "  --bmfr-position-limit D2  bmfr: squared world distance a history tap may lie at (default 0.01)\n"
+    "  --bmfr-normal-limit D2    bmfr: squared normal difference a history tap may have (default 1)\n";
 
 namespace {
 
@@ -55,7 +62,14 @@ const std::map<std::string, std::vector<std::string>>& readers() {
       {"jbf-sigma-normal", {"jbf", "jbf-atrous"}},
       {"jbf-sigma-plane", {"jbf", "jbf-atrous"}},
       {"jbf-alpha", {"jbf", "jbf-atrous"}},
-      {"jbf-clamp-k", {"jbf", "jbf-atrous"}}};
+      {"jbf-clamp-k", {"jbf", "jbf-atrous"}},
+      {"bmfr-rank", {"bmfr"}},
+      {"bmfr-noise", {"bmfr"}},
+      {"bmfr-skip-threshold", {"bmfr"}},
+      {"bmfr-pre-alpha", {"bmfr"}},
+      {"bmfr-post-alpha", {"bmfr"}},
+      {"bmfr-position-limit", {"bmfr"}},
+      {"bmfr-normal-limit", {"bmfr"}}};
   return r;
 }
 
@@ -97,7 +111,16 @@ void read_method_params(const Options& o, DenoiserConfig& c) {
   j.sigma_plane = o.get_float("jbf-sigma-plane", j.sigma_plane);
   j.alpha = o.get_float("jbf-alpha", j.alpha);
   j.clamp_k = o.get_float("jbf-clamp-k", j.clamp_k);
+  BmfrParams& b = c.bmfr;
+  b.noise_amount = o.get_float("bmfr-noise", b.noise_amount);
+  b.skip_threshold = o.get_float("bmfr-skip-threshold", b.skip_threshold);
+  b.pre_alpha = o.get_float("bmfr-pre-alpha", b.pre_alpha);
+  b.post_alpha = o.get_float("bmfr-post-alpha", b.post_alpha);
+  b.position_limit_sq = o.get_float("bmfr-position-limit", b.position_limit_sq);
+  b.normal_limit_sq = o.get_float("bmfr-normal-limit", b.normal_limit_sq);
   try {
+    b.rank_strategy = parse_bmfr_rank_strategy(o.get("bmfr-rank", to_string(b.rank_strategy)));
+    b.validate();
     p.validate();
     g.validate();
     v.validate();

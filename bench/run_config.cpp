@@ -58,6 +58,18 @@ std::string params_key(const DenoiserConfig& d) {
       unless_default("k", p.clamp_k, def.clamp_k);
       break;
     }
+    case Method::Bmfr: {
+      const BmfrParams& p = d.bmfr;
+      const BmfrParams def;
+      s << to_string(p.rank_strategy);
+      unless_default("n", p.noise_amount, def.noise_amount);
+      unless_default("st", p.skip_threshold, def.skip_threshold);
+      unless_default("a1", p.pre_alpha, def.pre_alpha);
+      unless_default("a2", p.post_alpha, def.post_alpha);
+      unless_default("pl", p.position_limit_sq, def.position_limit_sq);
+      unless_default("nl", p.normal_limit_sq, def.normal_limit_sq);
+      break;
+    }
   }
   return s.str();
 }
@@ -86,6 +98,13 @@ json params_json(const DenoiserConfig& d) {
               {"sigma_coord", p.sigma_coord}, {"sigma_color", p.sigma_color},
               {"sigma_normal", p.sigma_normal}, {"sigma_plane", p.sigma_plane},
               {"alpha", p.alpha},             {"clamp_k", p.clamp_k}};
+    }
+    case Method::Bmfr: {
+      const BmfrParams& p = d.bmfr;
+      return {{"rank_strategy", to_string(p.rank_strategy)}, {"noise_amount", p.noise_amount},
+              {"skip_threshold", p.skip_threshold},          {"pre_alpha", p.pre_alpha},
+              {"post_alpha", p.post_alpha},                  {"position_limit_sq", p.position_limit_sq},
+              {"normal_limit_sq", p.normal_limit_sq}};
     }
   }
   return json::object();

@@ -378,6 +378,7 @@ std::optional<StageCost> method_stage_cost(const DenoiserConfig& d, const std::s
       if (name != wavelet_stage::kAtrous) return std::nullopt;
       return wavelet_atrous_cost(d.mode, d.wavelet, surface_fraction);
     case Method::Gaussian:
+    case Method::Bmfr:
       return std::nullopt;
   }
   return std::nullopt;

@@ -7,3 +7,12 @@
 #else
 #define SVGF_HD inline
 #endif
+
+// Before an SVGF_HD template that calls what it is given (a lambda, a Block): instantiated with
+// host-only arguments, nvcc would warn that device code calls host code, for instantiations
+// that are never compiled for the device.
+#if defined(__CUDACC__)
+#define SVGF_HD_TEMPLATE _Pragma("nv_exec_check_disable")
+#else
+#define SVGF_HD_TEMPLATE
+#endif

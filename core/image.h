@@ -1,6 +1,7 @@
 #pragma once
 // Host-side owning image: planar float channels, channel c of pixel (x, y) at
 // data[(c * height + y) * width + x]. Views into it (core/views.h) are what kernels see.
+#include <algorithm>
 #include <cstddef>
 #include <stdexcept>
 #include <string>
@@ -41,6 +42,18 @@ class Image {
   RgbView rgb(int first = 0) { return {plane(first), plane(first + 1), plane(first + 2)}; }
   ConstRgbView rgb(int first = 0) const {
     return {plane(first), plane(first + 1), plane(first + 2)};
+  }
+
+  // A copy of channels first .. first + count - 1.
+  Image channels_from(int first, int count) const {
+    if (first < 0 || count < 0 || first + count > channels_)
+      throw std::invalid_argument("Image: channels " + std::to_string(first) + ".." +
+                                  std::to_string(first + count - 1) + " of " +
+                                  std::to_string(channels_));
+    Image out(width_, height_, count);
+    for (int c = 0; c < count; ++c)
+      std::copy(plane(first + c), plane(first + c) + pixel_count(), out.plane(c));
+    return out;
   }
 
   std::vector<float>& data() { return data_; }

@@ -10,6 +10,7 @@
 
 #include "core/stage_times.h"
 #include "core/tallies.h"
+#include "kernels_cpu/cpu_block.h"
 #include "kernels_cpu/parallel_for.h"
 
 namespace svgf::cpu {
@@ -33,6 +34,14 @@ class CpuEngine {
   void run(const char* stage, const Kernel& kernel, int width, int height) {
     const auto t0 = std::chrono::steady_clock::now();
     arena_.execute([&] { PixelDriver<Kernel>::run(kernel, width, height); });
+    times_.add(stage, elapsed_ms(t0));
+  }
+
+  // A block kernel (core/block_reduce.h) over `blocks` blocks.
+  template <class Kernel>
+  void run_blocks(const char* stage, const Kernel& kernel, int blocks) {
+    const auto t0 = std::chrono::steady_clock::now();
+    arena_.execute([&] { for_each_block(blocks, kernel); });
     times_.add(stage, elapsed_ms(t0));
   }
 

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/denoiser.h"
+#include "methods/bmfr/params.h"
 #include "methods/gaussian/params.h"
 #include "methods/jbf/params.h"
 #include "methods/svgf/params.h"
@@ -22,5 +23,6 @@ std::unique_ptr<Denoiser> make_gaussian_denoiser(const GaussianParams& params,
 std::unique_ptr<Denoiser> make_wavelet_denoiser(const WaveletParams& params,
                                                 const EngineConfig& config);
 std::unique_ptr<Denoiser> make_jbf_denoiser(const JbfParams& params, const EngineConfig& config);
+std::unique_ptr<Denoiser> make_bmfr_denoiser(const BmfrParams& params, const EngineConfig& config);
 
 }  // namespace svgf::cuda

@@ -23,6 +23,9 @@ class CudaEngine {
 
   template <class Kernel>
   void run(const char* stage, const Kernel& kernel, int width, int height);
+  // A block kernel (core/block_reduce.h) over `blocks` blocks.
+  template <class Kernel>
+  void run_blocks(const char* stage, const Kernel& kernel, int blocks);
   // For kernels returning a bit mask: per-bit pixel counts, in tallies() after end_frame().
   template <class Kernel>
   void run_tallying(const char* stage, const Kernel& kernel, int width, int height);

@@ -11,6 +11,7 @@
 
 #include <cuda_runtime.h>
 
+#include "kernels_cuda/cuda_block.cuh"
 #include "kernels_cuda/cuda_check.h"
 #include "kernels_cuda/cuda_engine.h"
 #include "kernels_cuda/device_array.h"
@@ -74,6 +75,30 @@ void launch(const K& k, int width, int height, LaunchShape shape, cudaStream_t s
   check_launch(what, g);
 }
 
+// A block kernel (core/block_reduce.h): one thread block of block::kThreads per block, its
+// scratch and the reduction's partial sums in dynamic shared memory (beyond the 48 KB default:
+// the kernel is allowed what it needs first).
+template <class K>
+void launch_blocks(const K& k, int blocks, cudaStream_t stream, const char* what) {
+  if (blocks <= 0) return;
+  constexpr size_t kBytes = (K::kScratchFloats + block::kThreads) * sizeof(float);
+  static_assert(kBytes <= 227 * 1024, "a block's scratch must fit the shared memory of sm_90");
+  SVGF_CUDA_CHECK(cudaFuncSetAttribute(block_kernel<K>, cudaFuncAttributeMaxDynamicSharedMemorySize,
+                                       static_cast<int>(kBytes)),
+                  std::string("shared memory for kernel '") + what + "'");
+  LaunchGeometry g;
+  g.grid = dim3(static_cast<unsigned>(blocks));
+  g.block = dim3(block::kThreads);
+  block_kernel<K><<<g.grid, g.block, kBytes, stream>>>(k);
+  check_launch(what, g);
+}
+
+template <class Kernel>
+void CudaEngine::run_blocks(const char* stage, const Kernel& kernel, int blocks) {
+  mark(stage);
+  launch_blocks(kernel, blocks, stream_.get(), stage);
+}
+
 template <class Kernel>
 void CudaEngine::run(const char* stage, const Kernel& kernel, int width, int height) {
   mark(stage);
@@ -111,6 +136,14 @@ int64_t run(const K& k, int width, int height, LaunchShape shape = {},
     count.download(&n, 1);
     return static_cast<int64_t>(n);
   }
+}
+
+// One block kernel on the default stream, waited for: for tests.
+template <class K>
+void run_blocks(const K& k, int blocks, const char* what = "block kernel") {
+  launch_blocks(k, blocks, nullptr, what);
+  SVGF_CUDA_CHECK(cudaStreamSynchronize(nullptr),
+                  std::string("kernel '") + what + "' execution");
 }
 
 }  // namespace svgf::cuda

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "kernels_cpu/bmfr_cpu.h"
 #include "kernels_cpu/gaussian_cpu.h"
 #include "kernels_cpu/jbf_cpu.h"
 #include "kernels_cpu/svgf_cpu.h"
@@ -22,6 +23,7 @@ const char* to_string(Method m) {
     case Method::Wavelet: return "wavelet";
     case Method::Jbf: return "jbf";
     case Method::JbfAtrous: return "jbf-atrous";
+    case Method::Bmfr: return "bmfr";
   }
   return "?";
 }
@@ -41,8 +43,9 @@ Method parse_method(const std::string& s) {
   if (s == "wavelet") return Method::Wavelet;
   if (s == "jbf") return Method::Jbf;
   if (s == "jbf-atrous") return Method::JbfAtrous;
+  if (s == "bmfr") return Method::Bmfr;
   throw std::invalid_argument("unknown method '" + s +
-                              "' (known: svgf, gaussian, wavelet, jbf, jbf-atrous)");
+                              "' (known: svgf, gaussian, wavelet, jbf, jbf-atrous, bmfr)");
 }
 Backend parse_backend(const std::string& s) {
   if (s == "cpu") return Backend::Cpu;
@@ -86,6 +89,7 @@ std::unique_ptr<Denoiser> make_denoiser(const DenoiserConfig& config) {
       case Method::Wavelet: return cuda::make_wavelet_denoiser(c.wavelet, e);
       case Method::Jbf:
       case Method::JbfAtrous: return cuda::make_jbf_denoiser(c.jbf, e);
+      case Method::Bmfr: return cuda::make_bmfr_denoiser(c.bmfr, e);
     }
 #endif
   }
@@ -95,6 +99,7 @@ std::unique_ptr<Denoiser> make_denoiser(const DenoiserConfig& config) {
     case Method::Wavelet: return cpu::make_wavelet_denoiser(c.wavelet, e);
     case Method::Jbf:
     case Method::JbfAtrous: return cpu::make_jbf_denoiser(c.jbf, e);
+    case Method::Bmfr: return cpu::make_bmfr_denoiser(c.bmfr, e);
   }
   throw std::invalid_argument("make_denoiser: unknown method");
 }

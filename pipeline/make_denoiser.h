@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/denoiser.h"
+#include "methods/bmfr/params.h"
 #include "methods/gaussian/params.h"
 #include "methods/jbf/params.h"
 #include "methods/svgf/params.h"
@@ -15,10 +16,10 @@ namespace svgf {
 
 // Jbf and JbfAtrous are one filter (methods/jbf/) in its two forms: the full window and the
 // a-trous levels (JbfParams::levels; jbf-atrous with levels 0 takes 4).
-enum class Method { Svgf, Gaussian, Wavelet, Jbf, JbfAtrous };
+enum class Method { Svgf, Gaussian, Wavelet, Jbf, JbfAtrous, Bmfr };
 
 const char* to_string(Method m);
-// Parse "svgf|gaussian|wavelet|jbf|jbf-atrous"; throws std::invalid_argument naming the value and the known methods.
+// Parse "svgf|gaussian|wavelet|jbf|jbf-atrous|bmfr"; throws std::invalid_argument naming the value and the known methods.
 Method parse_method(const std::string& s);
 
 // The engine settings every method shares, the method, and one parameter struct per method
@@ -29,6 +30,7 @@ struct DenoiserConfig : EngineConfig {
   GaussianParams gaussian;  // methods/gaussian/params.h
   WaveletParams wavelet;    // methods/wavelet/params.h
   JbfParams jbf;            // methods/jbf/params.h (jbf and jbf-atrous)
+  BmfrParams bmfr;          // methods/bmfr/params.h
 };
 
 // Throws std::invalid_argument for an impossible combination (fast mode on the CPU, bad

@@ -185,6 +185,33 @@ TEST_CASE("svgf denoise --method wavelet: its flags reach the filter, bad values
   test::remove_output(out);
 }
 
+TEST_CASE("svgf denoise --method bmfr: its flags reach the filter, bad values name the flag",
+          "[app][bmfr]") {
+  const fs::path in = write_synthetic(scratch("bmfr_in"), 3), out = scratch("bmfr_out");
+  REQUIRE(app::denoise_command({in.string(), out.string(), "--backend", "cpu", "--method",
+                                "bmfr", "--bmfr-rank", "skip", "--bmfr-post-alpha", "0.2",
+                                "--no-preview"}) == 0);
+  std::ifstream f(out / "report.json");
+  const auto report = nlohmann::json::parse(f);
+  REQUIRE(report["denoiser"].get<std::string>().rfind("bmfr (skip) cpu", 0) == 0);
+  REQUIRE(report["mean_psnr_denoised_db"].get<double>() >
+          report["mean_psnr_noisy_db"].get<double>() + 5);
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {"--bmfr-rank", "qr"},          {"--bmfr-noise", "-1"},
+      {"--bmfr-skip-threshold", "1"}, {"--bmfr-pre-alpha", "0"},
+      {"--bmfr-post-alpha", "1.5"},   {"--bmfr-position-limit", "0"},
+      {"--bmfr-normal-limit", "nan"}};
+  for (const auto& [flag, value] : bad)
+    REQUIRE_THROWS_WITH(app::denoise_command({in.string(), out.string(), "--backend", "cpu",
+                                              "--method", "bmfr", flag, value}),
+                        Catch::Contains(flag));
+  REQUIRE_THROWS_WITH(app::denoise_command({in.string(), out.string(), "--backend", "cpu",
+                                            "--method", "svgf", "--bmfr-rank", "skip"}),
+                      Catch::Contains("--bmfr-rank applies to bmfr, not to svgf"));
+  fs::remove_all(in);
+  test::remove_output(out);
+}
+
 // Issue 15, item 2: frames were read in the manifest's order and outputs numbered by position.
 // They are now read by frame number (svgf.frame) and each output keeps its input's number, so a
 // shuffled manifest gives the same bytes as the ordered one.

@@ -28,7 +28,7 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr int kWidth = 128, kHeight = 48;
 // Values are planted in columns [kPatchX0, kPatchX1); a method reaches at most kReach pixels
 // (SVGF: 1 reprojection + 3 variance + 30 a-trous; wavelet: 30 + its 3x3 deviation windows;
-// JBF: 16 or 30, + 3 clamp window + 1 reprojection), so columns from kPatchX1 + kReach on must
+// JBF: 16 or 30, + 3 clamp window + 1 reprojection; BMFR: its 32-pixel block + 1 reprojection), so columns from kPatchX1 + kReach on must
 // not see them in the frame they arrive.
 constexpr int kPatchX0 = 2, kPatchX1 = 10, kReach = 40;
 constexpr int kPoisoned = 3, kFrames = 20;
@@ -125,6 +125,7 @@ void gaussian_case(const TestDevice& d) { bad_values_stay_local(d, Method::Gauss
 void wavelet_case(const TestDevice& d) { bad_values_stay_local(d, Method::Wavelet); }
 void jbf_case(const TestDevice& d) { bad_values_stay_local(d, Method::Jbf); }
 void jbf_atrous_case(const TestDevice& d) { bad_values_stay_local(d, Method::JbfAtrous); }
+void bmfr_case(const TestDevice& d) { bad_values_stay_local(d, Method::Bmfr); }
 
 // The repairs a frame reports, per kind, on every backend: what the planted values call for.
 void repairs_counted_per_kind(const TestDevice& device) {
@@ -184,6 +185,16 @@ void extreme_parameters_finite(const TestDevice& device) {
       c.jbf.clamp_k = extreme ? huge : 0.f;
       configs.emplace_back(to_string(m), c);
     }
+    c.method = Method::Bmfr;
+    for (BmfrRankStrategy s : {BmfrRankStrategy::Noise, BmfrRankStrategy::Skip}) {
+      c.bmfr.rank_strategy = s;
+      c.bmfr.pre_alpha = c.bmfr.post_alpha = extreme ? 1.f : tiny;
+      c.bmfr.position_limit_sq = c.bmfr.normal_limit_sq = lo_hi;
+      c.bmfr.noise_amount = extreme ? 1.f : 0.f;
+      c.bmfr.skip_threshold = extreme ? 0.999f : 0.f;
+      c.bmfr.albedo_epsilon = extreme ? 1.f : tiny;
+      configs.emplace_back(std::string("bmfr ") + to_string(s), c);
+    }
     c.method = Method::Gaussian;
     c.gaussian.sigma = extreme ? 256.f : 1e-3f;
     c.gaussian.radius = extreme ? 40 : 0;
@@ -215,5 +226,7 @@ SVGF_DEVICE_TEST("bad input: jbf keeps planted NaN, Inf and huge values local an
                  "[bad-input]", jbf_case)
 SVGF_DEVICE_TEST("bad input: jbf-atrous keeps planted NaN, Inf and huge values local and recovers",
                  "[bad-input]", jbf_atrous_case)
+SVGF_DEVICE_TEST("bad input: bmfr keeps planted NaN, Inf and huge values local and recovers",
+                 "[bad-input]", bmfr_case)
 SVGF_DEVICE_TEST("bad input: every repair is counted by kind", "[bad-input]",
                  repairs_counted_per_kind)

@@ -300,6 +300,16 @@ TEST_CASE("jbf: CPU vs CUDA exact bitwise, fast within tolerance, both forms, ev
       });
 }
 
+TEST_CASE("bmfr: CPU vs CUDA exact bitwise, fast within tolerance, both strategies, every source",
+          "[pipeline][bmfr]") {
+  for (const Source& src : sources())
+    for (BmfrRankStrategy s : {BmfrRankStrategy::Noise, BmfrRankStrategy::Skip})
+      compare_method(src, 6, [&](DenoiserConfig& c) {
+        c.method = Method::Bmfr;
+        c.bmfr.rank_strategy = s;
+      });
+}
+
 TEST_CASE("determinism: two runs and three block shapes give the same bits, exact and fast",
           "[determinism]") {
   std::vector<Source> all = sources();

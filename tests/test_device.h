@@ -26,6 +26,7 @@
 #include "core/frame.h"
 #include "core/image.h"
 #include "core/views.h"
+#include "kernels_cpu/cpu_block.h"
 #include "kernels_cpu/parallel_for.h"
 #include "kernels_cuda/launch_shape.h"
 #if defined(SVGF_HAVE_CUDA)
@@ -236,6 +237,26 @@ class StageRunner {
     (void)shape;
     FAIL(what << ": CUDA stage run in a binary not compiled by nvcc");
     return 0;
+#endif
+  }
+
+  // Runs a block kernel (core/block_reduce.h) over `blocks` blocks, as run() runs a pixel kernel.
+  template <class K>
+  void run_blocks(const K& kernel, int blocks, const std::string& what = "block stage") {
+    if (!device_.cuda()) {
+      cpu::for_each_block(blocks, kernel);
+      return;
+    }
+#if defined(__CUDACC__)
+    upload();
+    if constexpr (kHostRunnable<K>) {
+      if (!device_.fast()) cpu::for_each_block(blocks, to_host(kernel));
+    }
+    cuda::run_blocks(kernel, blocks, what.c_str());
+    download(what);
+    ++runs_;
+#else
+    FAIL(what << ": CUDA block stage run in a binary not compiled by nvcc");
 #endif
   }
 

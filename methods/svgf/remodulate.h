@@ -7,10 +7,6 @@
 
 namespace svgf {
 
-SVGF_HD Vec3 remodulated(Vec3 illumination, Vec3 albedo, Vec3 emission, float albedo_epsilon) {
-  return illumination * guarded_albedo(albedo, albedo_epsilon) + emission;
-}
-
 // Remodulates as it stores: what the remodulate stage writes into, and what the fused pipeline's
 // last a-trous iteration stores into directly (fast mode).
 struct RemodulateSink {

@@ -1,0 +1,76 @@
+#pragma once
+// Least squares on one block of rows by a Householder QR (Golub & Van Loan, Alg. 5.2.1; the
+// BMFR authors' fitter): min_w || F w - c || for each right-hand side c, F: kRows x F columns.
+// The columns live in a block's scratch (core/block_reduce.h), column k at a + k * kRows, the
+// right-hand sides after the F columns. Reflections zero each column below its pivot and are
+// applied to the later columns and the right-hand sides, leaving R on top (R's diagonal
+// written into the pivot rows) and Q^T c beside it; back-substitution gives the weights.
+// A column whose norm left on the pivot rows is at most sqrt(keep2) times its own norm is
+// dependent on the columns before it: it is skipped (weight 0) and the next column takes its
+// pivot row, so R stays triangular on the kept columns. Every sum runs the block's fixed tree.
+#include "core/block_reduce.h"
+#include "core/hd.h"
+#include "core/vec.h"
+
+namespace svgf {
+
+template <int kF, int kC>
+struct BlockLeastSquares {
+  static constexpr int kColumns = kF + kC;
+
+  // Factors and solves; weights[k * kC + c] (written by one thread) for column k and right-hand
+  // side c. Returns the rank (the columns kept), on every thread.
+  SVGF_HD_TEMPLATE
+  template <class Arith, class Block>
+  SVGF_HD static int solve(const Block& blk, float* a, float keep2, float* weights) {
+    float norm2[kF];
+    for (int k = 0; k < kF; ++k) {
+      const float* v = a + k * block::kRows;
+      norm2[k] = blk.sum([&](int r) { return v[r] * v[r]; });
+    }
+    int kept[kF];
+    int rank = 0;
+    for (int j = 0; j < kF; ++j) {
+      const int p = rank;  // the pivot row
+      float* const v = a + j * block::kRows;
+      const float below = blk.sum([&](int r) { return r > p ? v[r] * v[r] : 0.f; });
+      const float x0 = v[p];
+      const float left2 = below + x0 * x0;
+      if (!(left2 > keep2 * norm2[j]) || !(left2 > kTiny)) continue;  // skipped
+      const float norm = Arith::sqrt(left2);
+      const float alpha = x0 > 0.f ? -norm : norm;  // the sign that avoids cancellation in u0
+      const float u0 = x0 - alpha;  // u = (u0, v[p + 1], ...): H = I - 2 u u^T / |u|^2
+      const auto per_u2 = Arith::divide_by(below + u0 * u0);
+      for (int k = j + 1; k < kColumns; ++k) {
+        float* const w = a + k * block::kRows;
+        const float d =
+            blk.sum([&](int r) { return r < p ? 0.f : (r == p ? u0 : v[r]) * w[r]; });
+        const float f = per_u2(d + d);
+        blk.rows([&](int r) {
+          if (r >= p) w[r] = Arith::mad(-(r == p ? u0 : v[r]), f, w[r]);
+        });
+      }
+      blk.once([&] { v[p] = alpha; });  // R's diagonal (v below p keeps u, unused from here)
+      kept[rank++] = j;
+    }
+    // R w = (Q^T c) on the kept columns: R[i][k] = a[k][i], (Q^T c)[i] = a[kF + c][i].
+    blk.once([&] {
+      for (int k = 0; k < kF * kC; ++k) weights[k] = 0.f;
+      for (int i = rank - 1; i >= 0; --i) {
+        const int j = kept[i];
+        for (int c = 0; c < kC; ++c) {
+          float s = a[(kF + c) * block::kRows + i];
+          for (int m = i + 1; m < rank; ++m)
+            s = s - a[kept[m] * block::kRows + i] * weights[kept[m] * kC + c];
+          weights[j * kC + c] = s / a[j * block::kRows + i];
+        }
+      }
+    });
+    return rank;
+  }
+
+  // Under this a column's squared norm is zero for the reflection (|u|^2 would underflow).
+  static constexpr float kTiny = 1e-30f;
+};
+
+}  // namespace svgf
