@@ -2,7 +2,8 @@
 // The CPU backend of a denoiser written once (methods/<method>/denoiser.h): the TBB engine,
 // host buffers, and a frame's inputs read in place. What a backend provides:
 //   Engine& engine()                       runs pixel kernels (run, run_tallying), times stages
-//   using Buffer; allocate(buffer, channels, what)  a planar float buffer of the frame's size
+//   using Buffer; allocate(buffer, channels, what)  a planar float buffer of the frame's size,
+//                                          zero-filled
 //   set_method_planes(n)                   how many planes the method allocates (for errors)
 //   float* plane(buffer, c); RgbView rgb(buffer, first); Image read(buffer)
 //                                          its planes as views; a host copy

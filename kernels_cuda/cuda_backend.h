@@ -76,6 +76,8 @@ class CudaBackend {
   void set_method_planes(int planes) { method_planes_ = planes; }
 
   // `what` and what the whole frame size needs name the buffer in an out-of-memory error.
+  // Zero-filled, as the CPU's: a buffer a method fills only in part (BMFR's per-block data)
+  // reads back defined.
   void allocate(Buffer& b, int channels, const char* what) {
     const size_t planes = static_cast<size_t>(2 * kInputPlanes + 3 + method_planes_);
     const size_t mib = (planes * pixels() * sizeof(float) + (1u << 20) - 1) >> 20;
@@ -83,6 +85,7 @@ class CudaBackend {
                               std::to_string(height_) + " frames need about " +
                               std::to_string(mib) + " MiB of device memory in all)";
     b.resize(static_cast<size_t>(channels) * pixels(), named.c_str());
+    SVGF_CUDA_CHECK(cudaMemset(b.get(), 0, b.size() * sizeof(float)), named);
   }
   float* plane(const Buffer& b, int c) const { return b.get() + static_cast<size_t>(c) * pixels(); }
   // Three planes of a buffer from `first_plane` on, as a color view.
