@@ -13,6 +13,7 @@
 #include "bench/quality.h"
 #include "bench/stage_cost.h"
 #include "bench/stats.h"
+#include "methods/bmfr/denoiser.h"
 
 namespace svgf::bench {
 namespace {
@@ -216,6 +217,49 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
   return j;
 }
 
+namespace {
+
+// A block-fitting method's per-block diagnostics over a sequence (BMFR's block_rank and
+// block_condition debug buffers): how often a block's features were rank-deficient (the skip
+// strategy dropped a column; under the noise strategy, a numerically zero column) and the
+// distribution of max |R_ii| / min |R_ii| over the blocks that fitted something.
+class BlockDiagnostics {
+ public:
+  explicit BlockDiagnostics(const Denoiser& d) {
+    const std::vector<std::string> names = d.debug_buffers();
+    active_ = std::find(names.begin(), names.end(), bmfr_buffer::kRank) != names.end();
+  }
+  void add(const Denoiser& d) {
+    if (!active_) return;
+    const Image rank = d.read_buffer(bmfr_buffer::kRank);
+    const Image cond = d.read_buffer(bmfr_buffer::kCondition);
+    for (size_t k = 0; k < rank.data().size(); ++k) {
+      ++blocks_;
+      const float r = rank.data()[k];
+      if (r == 0.f) {
+        ++empty_;
+        continue;
+      }
+      if (r < static_cast<float>(bmfr::kFeatures)) ++deficient_;
+      condition_.push_back(cond.data()[k]);
+    }
+  }
+  std::optional<json> result() const {
+    if (!active_) return std::nullopt;
+    const Summary s = summarize(condition_);
+    return json{{"blocks", blocks_},           {"rank_deficient", deficient_},
+                {"empty", empty_},             {"condition_median", s.median},
+                {"condition_p95", s.p95},      {"condition_max", s.max}};
+  }
+
+ private:
+  bool active_ = false;
+  int64_t blocks_ = 0, deficient_ = 0, empty_ = 0;
+  std::vector<double> condition_;
+};
+
+}  // namespace
+
 json quality_run(const RunConfig& c, const FrameSet& fs) {
   if (!fs.has_reference())
     throw std::invalid_argument("quality: " + fs.description + " has no reference");
@@ -226,6 +270,8 @@ json quality_run(const RunConfig& c, const FrameSet& fs) {
   else if (c.method != "noisy")
     set_baseline_threads(c.resolved_threads());
   QualityTracker tracker;
+  std::optional<BlockDiagnostics> blocks;
+  if (project) blocks.emplace(*den);
   json frames = json::array();
   double sums[4] = {0, 0, 0, 0}, temporal[2] = {0, 0};
   int finite_psnr = 0, n_temporal[2] = {0, 0};
@@ -238,6 +284,7 @@ json quality_run(const RunConfig& c, const FrameSet& fs) {
       if (cut) den->reset();
       den->denoise(f, out);
       replaced = den->last_report().replaced_samples;
+      blocks->add(*den);
     } else if (c.method == "noisy") {
       out = f.color;
     } else {
@@ -284,6 +331,8 @@ json quality_run(const RunConfig& c, const FrameSet& fs) {
       {"flip", sums[3] / n},
       {"error_change", n_temporal[0] ? json(temporal[0] / n_temporal[0]) : json(nullptr)},
       {"output_change", n_temporal[1] ? json(temporal[1] / n_temporal[1]) : json(nullptr)}};
+  if (blocks)
+    if (const std::optional<json> b = blocks->result()) j["blocks"] = *b;
   return j;
 }
 
@@ -353,6 +402,17 @@ void print_quality(const json& e, std::FILE* f) {
                e["label"].get<std::string>().c_str(), e["scene"].get<std::string>().c_str(),
                num(m["psnr"]), num(m["ssim"]), num(m["relmse"]), num(m["flip"]),
                num(m["error_change"]), num(m["output_change"]));
+  if (e.contains("blocks")) {
+    const json& b = e["blocks"];
+    const double n = std::max(1.0, b["blocks"].get<double>());
+    std::fprintf(f,
+                 "  %-34s blocks %lld: rank-deficient %.1f%%, empty %.1f%%; max/min |R_ii| "
+                 "median %.3g, p95 %.3g, max %.3g\n",
+                 "", static_cast<long long>(b["blocks"].get<int64_t>()),
+                 100 * b["rank_deficient"].get<double>() / n, 100 * b["empty"].get<double>() / n,
+                 b["condition_median"].get<double>(), b["condition_p95"].get<double>(),
+                 b["condition_max"].get<double>());
+  }
   std::fflush(f);
 }
 

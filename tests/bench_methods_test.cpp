@@ -157,6 +157,28 @@ TEST_CASE("a wavelet suite entry reads back through the results model", "[bench]
   CHECK_THAT(md, Catch::Contains("n/a"));
 }
 
+TEST_CASE("a BMFR quality run reports its blocks: rank deficiency and condition", "[bench][bmfr]") {
+  const FrameSet f = fixture();
+  for (const char* strategy : {"noise", "skip"}) {
+    RunConfig c = run_config("bmfr");
+    c.denoiser.threads = 2;
+    c.denoiser.bmfr.rank_strategy = parse_bmfr_rank_strategy(strategy);
+    const json q = quality_run(c, f);
+    INFO(strategy << ": " << q["blocks"].dump());
+    REQUIRE(q.contains("blocks"));
+    const json& b = q["blocks"];
+    CHECK(b["blocks"] == 3 * 25);  // 128x128 on a moving grid: 5 x 5 blocks a frame
+    CHECK(b["empty"] == 0);
+    // The fixture's walls are axis-aligned: skip drops columns in most blocks, noise in none.
+    if (std::string(strategy) == "noise") CHECK(b["rank_deficient"] == 0);
+    else CHECK(b["rank_deficient"].get<int>() > 3 * 25 / 2);
+    CHECK(b["condition_median"].get<double>() >= 1.0);
+    CHECK(b["condition_max"].get<double>() < 1e4);
+  }
+  // Methods without blocks report none.
+  CHECK_FALSE(quality_run(run_config("svgf"), f).contains("blocks"));
+}
+
 TEST_CASE("every method and variant has its chart series", "[bench]") {
   auto series = [](const std::string& method, const std::string& backend, const std::string& mode) {
     return series_of({{"config", {{"method", method}, {"backend", backend}, {"mode", mode}}}});

@@ -82,7 +82,7 @@ struct LeastSquaresKernel {
   using Arith = ArithT;
   static constexpr int kScratchFloats = (kF + kC) * kRows;
   const float* in = nullptr;
-  float* out = nullptr;  // weights (kF * kC), rank, then R: kF rows of kF + kC
+  float* out = nullptr;  // weights (kF * kC), rank, condition, then R: kF rows of kF + kC
   float keep2 = 0.f;
   SVGF_HD_TEMPLATE
   template <class Block>
@@ -91,12 +91,13 @@ struct LeastSquaresKernel {
     blk.rows([&](int r) {
       for (int k = 0; k < kF + kC; ++k) a[k * kRows + r] = in[k * kRows + r];
     });
-    const int rank = BlockLeastSquares<kF, kC>::template solve<Arith>(blk, a, keep2, out);
+    const BlockFit fit = BlockLeastSquares<kF, kC>::template solve<Arith>(blk, a, keep2, out);
     blk.once([&] {
-      out[kF * kC] = static_cast<float>(rank);
+      out[kF * kC] = static_cast<float>(fit.rank);
+      out[kF * kC + 1] = fit.condition;
       for (int i = 0; i < kF; ++i)
         for (int k = 0; k < kF + kC; ++k)
-          out[kF * kC + 1 + i * (kF + kC) + k] = k < i ? 0.f : a[k * kRows + i];
+          out[kF * kC + 2 + i * (kF + kC) + k] = k < i ? 0.f : a[k * kRows + i];
     });
   }
 };
@@ -113,13 +114,14 @@ template <int kF, int kC>
 struct Solved {
   std::vector<double> w;  // kF x kC
   int rank = 0;
+  double condition = 0;
   std::vector<double> r;  // kF x (kF + kC)
 };
 
 template <int kF, int kC>
 Solved<kF, kC> solve_on(const TestDevice& d, const std::vector<std::vector<double>>& cols,
                         float keep2) {
-  Image in(kRows, kF + kC, 1), out(kF * kC + 1 + kF * (kF + kC), 1, 1);
+  Image in(kRows, kF + kC, 1), out(kF * kC + 2 + kF * (kF + kC), 1, 1);
   for (int k = 0; k < kF + kC; ++k)
     for (int i = 0; i < kRows; ++i) in.at(i, k, 0) = static_cast<float>(cols[k][i]);
   StageRunner run(d);
@@ -131,7 +133,8 @@ Solved<kF, kC> solve_on(const TestDevice& d, const std::vector<std::vector<doubl
   Solved<kF, kC> s;
   for (int k = 0; k < kF * kC; ++k) s.w.push_back(out.at(k, 0, 0));
   s.rank = static_cast<int>(out.at(kF * kC, 0, 0));
-  for (int k = 0; k < kF * (kF + kC); ++k) s.r.push_back(out.at(kF * kC + 1 + k, 0, 0));
+  s.condition = out.at(kF * kC + 1, 0, 0);
+  for (int k = 0; k < kF * (kF + kC); ++k) s.r.push_back(out.at(kF * kC + 2 + k, 0, 0));
   return s;
 }
 
@@ -209,6 +212,7 @@ void least_squares_known_factorization(const TestDevice& d) {
     }
   }
   for (int k = 0; k < 3; ++k) REQUIRE(std::fabs(s.w[k] - w_true[k]) <= d.tolerance(1e-5) * 2);
+  REQUIRE(s.condition == Approx(3.0 / 1.5).epsilon(1e-5));  // max |R_ii| / min |R_ii|
 }
 
 void least_squares_against_float64(const TestDevice& d) {
@@ -281,6 +285,8 @@ void least_squares_exact_and_rank_deficient(const TestDevice& d) {
     }
     const auto s = solve_on<kF, kC>(d, cols, 1e-6f);
     REQUIRE(s.rank == 7);
+    REQUIRE(std::isfinite(s.condition));
+    REQUIRE(s.condition >= 1.0);
     REQUIRE(s.w[3] == 0.f);
     REQUIRE(s.w[6] == 0.f);
     REQUIRE(s.w[8] == 0.f);
@@ -404,6 +410,11 @@ void flat_walls_stay_finite(const TestDevice& d) {
       const float most = *std::max_element(rank.data().begin(), rank.data().end());
       // Skip keeps 1, p.x, p.y, p.x^2, p.y^2: the normals repeat the constant, p.z is constant.
       REQUIRE(most == (s == BmfrRankStrategy::Noise ? 10.f : 5.f));
+      const Image condition = den->read_buffer(bmfr_buffer::kCondition);
+      for (float c : condition.data()) {
+        REQUIRE(std::isfinite(c));
+        REQUIRE(c >= 1.f);
+      }
     }
   }
 }
@@ -434,6 +445,8 @@ TEST_CASE("bmfr: same bits on 1 and 2 threads; stages, defaults and errors", "[b
     test::require_identical(a, b, "1 vs 2 threads, frame " + std::to_string(k));
     test::require_identical(one->read_buffer(bmfr_buffer::kRank),
                             two->read_buffer(bmfr_buffer::kRank), "block ranks");
+    test::require_identical(one->read_buffer(bmfr_buffer::kCondition),
+                            two->read_buffer(bmfr_buffer::kCondition), "block conditions");
   }
   REQUIRE(two->stages() == std::vector<std::string>{"sanitize", "accumulate", "regression",
                                                     "weighted_sum", "post"});

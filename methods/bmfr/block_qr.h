@@ -5,29 +5,39 @@
 // right-hand sides after the F columns. Reflections zero each column below its pivot and are
 // applied to the later columns and the right-hand sides, leaving R on top (R's diagonal
 // written into the pivot rows) and Q^T c beside it; back-substitution gives the weights.
-// A column whose norm left on the pivot rows is at most sqrt(keep2) times its own norm is
-// dependent on the columns before it: it is skipped (weight 0) and the next column takes its
-// pivot row, so R stays triangular on the kept columns. Every sum runs the block's fixed tree.
+// A column whose norm left on the pivot rows is at most sqrt(keep2) times the largest column
+// norm is numerically dependent on the columns before it (the numerical-rank rule
+// |R_ii| <= tol max_j |a_j|, Golub & Van Loan Sec. 5.4): it is skipped (weight 0) and the next
+// column takes its pivot row, so R stays triangular on the kept columns and max/min |R_ii| stays
+// under about 1 / tol. Every sum runs the block's fixed tree.
 #include "core/block_reduce.h"
 #include "core/hd.h"
 #include "core/vec.h"
 
 namespace svgf {
 
+// What a fit found: the columns kept, and max |R_ii| / min |R_ii| over them (a lower bound of
+// R's condition number in the 2-norm; 0 when nothing was kept).
+struct BlockFit {
+  int rank = 0;
+  float condition = 0.f;
+};
+
 template <int kF, int kC>
 struct BlockLeastSquares {
   static constexpr int kColumns = kF + kC;
 
   // Factors and solves; weights[k * kC + c] (written by one thread) for column k and right-hand
-  // side c. Returns the rank (the columns kept), on every thread.
+  // side c. Returns the rank and the condition estimate, on every thread.
   SVGF_HD_TEMPLATE
   template <class Arith, class Block>
-  SVGF_HD static int solve(const Block& blk, float* a, float keep2, float* weights) {
-    float norm2[kF];
+  SVGF_HD static BlockFit solve(const Block& blk, float* a, float keep2, float* weights) {
+    float largest2 = 0.f;
     for (int k = 0; k < kF; ++k) {
       const float* v = a + k * block::kRows;
-      norm2[k] = blk.sum([&](int r) { return v[r] * v[r]; });
+      largest2 = max_f(largest2, blk.sum([&](int r) { return v[r] * v[r]; }));
     }
+    const float floor2 = keep2 * largest2;
     int kept[kF];
     int rank = 0;
     for (int j = 0; j < kF; ++j) {
@@ -36,7 +46,7 @@ struct BlockLeastSquares {
       const float below = blk.sum([&](int r) { return r > p ? v[r] * v[r] : 0.f; });
       const float x0 = v[p];
       const float left2 = below + x0 * x0;
-      if (!(left2 > keep2 * norm2[j]) || !(left2 > kTiny)) continue;  // skipped
+      if (!(left2 > floor2) || !(left2 > kTiny)) continue;  // skipped
       const float norm = Arith::sqrt(left2);
       const float alpha = x0 > 0.f ? -norm : norm;  // the sign that avoids cancellation in u0
       const float u0 = x0 - alpha;  // u = (u0, v[p + 1], ...): H = I - 2 u u^T / |u|^2
@@ -53,6 +63,17 @@ struct BlockLeastSquares {
       blk.once([&] { v[p] = alpha; });  // R's diagonal (v below p keeps u, unused from here)
       kept[rank++] = j;
     }
+    BlockFit fit;
+    fit.rank = rank;
+    if (rank > 0) {
+      float lo = abs_f(a[kept[0] * block::kRows]), hi = lo;
+      for (int i = 1; i < rank; ++i) {
+        const float d = abs_f(a[kept[i] * block::kRows + i]);
+        lo = min_f(lo, d);
+        hi = max_f(hi, d);
+      }
+      fit.condition = hi / lo;
+    }
     // R w = (Q^T c) on the kept columns: R[i][k] = a[k][i], (Q^T c)[i] = a[kF + c][i].
     blk.once([&] {
       for (int k = 0; k < kF * kC; ++k) weights[k] = 0.f;
@@ -66,7 +87,7 @@ struct BlockLeastSquares {
         }
       }
     });
-    return rank;
+    return fit;
   }
 
   // Under this a column's squared norm is zero for the reflection (|u|^2 would underflow).

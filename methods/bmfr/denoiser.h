@@ -40,6 +40,7 @@ inline constexpr const char* kLength = "history_length";    // samples in the hi
 inline constexpr const char* kFiltered = "filtered";        // the regression's output
 inline constexpr const char* kAccumulated = "accumulated";  // post-accumulated illumination
 inline constexpr const char* kRank = "block_rank";          // columns kept, per block (1 x blocks)
+inline constexpr const char* kCondition = "block_condition";  // max / min |R_ii|, per block
 }  // namespace bmfr_buffer
 
 struct BmfrFrameBuffers {
@@ -178,14 +179,14 @@ class BmfrDenoiser final : public Denoiser {
   }
   std::vector<std::string> debug_buffers() const override {
     return {bmfr_buffer::kNoisy, bmfr_buffer::kLength, bmfr_buffer::kFiltered,
-            bmfr_buffer::kAccumulated, bmfr_buffer::kRank};
+            bmfr_buffer::kAccumulated, bmfr_buffer::kRank, bmfr_buffer::kCondition};
   }
-  // Buffers of the last frame. block_rank is 1 row of the last frame's blocks (row-major over
-  // its grid, which moves every frame).
+  // Buffers of the last frame. block_rank and block_condition are 1 row of the last frame's
+  // blocks (row-major over its grid, which moves every frame).
   Image read_buffer(std::string_view name) const override {
     const bool known = name == bmfr_buffer::kNoisy || name == bmfr_buffer::kLength ||
                        name == bmfr_buffer::kFiltered || name == bmfr_buffer::kAccumulated ||
-                       name == bmfr_buffer::kRank;
+                       name == bmfr_buffer::kRank || name == bmfr_buffer::kCondition;
     if (!known) throw unknown_buffer("bmfr", name, debug_buffers());
     if (backend_.width() == 0) return Image();
     const Image h = backend_.read(history_[slot_]);  // written by the last frame
@@ -194,10 +195,12 @@ class BmfrDenoiser final : public Denoiser {
     if (name == bmfr_buffer::kLength) return h.channels_from(kLength, 1);
     if (name == bmfr_buffer::kFiltered) return backend_.read(frame_data_).channels_from(3, 3);
     const Image all = backend_.read(blocks_);
-    Image rank(last_grid_.blocks(), 1, 1);
+    const int at = name == bmfr_buffer::kRank ? BmfrBlockData::kFloats - 2
+                                              : BmfrBlockData::kFloats - 1;
+    Image per_block(last_grid_.blocks(), 1, 1);
     for (int k = 0; k < last_grid_.blocks(); ++k)
-      rank.at(k, 0, 0) = all.plane(0)[k * BmfrBlockData::kFloats + BmfrBlockData::kFloats - 1];
-    return rank;
+      per_block.at(k, 0, 0) = all.plane(0)[k * BmfrBlockData::kFloats + at];
+    return per_block;
   }
 
  private:

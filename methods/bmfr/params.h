@@ -14,7 +14,8 @@ enum class BmfrRankStrategy {
   // one, so no column is ever exactly dependent (the authors' add_random, NOISE_AMOUNT 1e-2).
   Noise,
   // No noise; a column whose norm left after the earlier columns' reflections falls under
-  // skip_threshold times its own norm is skipped (weight 0), as rank-revealing least squares do.
+  // skip_threshold times the block's largest column norm is skipped (weight 0): the
+  // numerical-rank rule of rank-revealing least squares.
   Skip,
 };
 
@@ -41,7 +42,7 @@ struct BmfrParams {
   float normal_limit_sq = 1.f;
   BmfrRankStrategy rank_strategy = BmfrRankStrategy::Noise;
   float noise_amount = 0.01f;     // NOISE_AMOUNT
-  float skip_threshold = 1e-3f;   // Skip: the relative column norm under which a column is dropped
+  float skip_threshold = 1e-3f;   // Skip: the relative norm under which a column is dropped
   float albedo_epsilon = 1e-3f;   // as SVGF's demodulation (core/modulation.h)
 
   // std::invalid_argument naming the flag and its range.

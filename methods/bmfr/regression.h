@@ -18,24 +18,25 @@
 
 namespace svgf {
 
-// Per block: weights (kFeatures x 3), the scaled features' ranges (kScaled x {min, max}) and
-// the number of columns kept (the rank the QR found).
+// Per block: weights (kFeatures x 3), the scaled features' ranges (kScaled x {min, max}), the
+// number of columns kept (the rank the QR found) and max |R_ii| / min |R_ii| (block_qr.h).
 struct BmfrBlockData {
   static constexpr int kWeights = bmfr::kFeatures * 3;
   static constexpr int kRanges = bmfr::kScaled * 2;
-  static constexpr int kFloats = kWeights + kRanges + 1;
+  static constexpr int kFloats = kWeights + kRanges + 2;
   float* data = nullptr;  // kFloats per block
   SVGF_HD float* weights(int b) const { return data + b * kFloats; }
   SVGF_HD float* ranges(int b) const { return data + b * kFloats + kWeights; }
   SVGF_HD float* rank(int b) const { return data + b * kFloats + kWeights + kRanges; }
+  SVGF_HD float* condition(int b) const { return data + b * kFloats + kWeights + kRanges + 1; }
 };
 
 template <class ArithT>
 struct BmfrFit {
   using Arith = ArithT;
   static constexpr int kScratchFloats = bmfr::kColumns * block::kRows;
-  // A column whose remaining norm is under this fraction of its own is numerically zero with
-  // either strategy (the noise keeps real features far above it).
+  // A column whose remaining norm is under this fraction of the largest column's is numerically
+  // zero with either strategy (the noise keeps real features far above it).
   static constexpr float kZeroColumn = 1e-6f;
 
   BmfrGrid grid;
@@ -89,15 +90,16 @@ struct BmfrFit {
     const float keep = noise ? kZeroColumn : max_f(skip_threshold, kZeroColumn);
 
     // 3. The least-squares fit (block_qr.h), then the block's ranges and rank.
-    const int rank = BlockLeastSquares<kFeatures, 3>::solve<Arith>(blk, a, keep * keep,
-                                                                    out.weights(b));
+    const BlockFit fit = BlockLeastSquares<kFeatures, 3>::solve<Arith>(blk, a, keep * keep,
+                                                                       out.weights(b));
     blk.once([&] {
       float* const range = out.ranges(b);
       for (int s = 0; s < kScaled; ++s) {
         range[2 * s] = lo[s];
         range[2 * s + 1] = hi[s];
       }
-      *out.rank(b) = static_cast<float>(rank);
+      *out.rank(b) = static_cast<float>(fit.rank);
+      *out.condition(b) = fit.condition;
     });
   }
 };
