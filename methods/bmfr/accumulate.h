@@ -4,7 +4,9 @@
 // read through the taps, so the first samples are averaged and the blend then settles at
 // pre_alpha. The result is what the regression fits, and the next frame's history. Writes the
 // reprojection (previous position and the accepted taps) for the post-accumulation, and keeps
-// this frame's positions and normals for the next frame's tests.
+// this frame's positions and normals for the next frame's tests. A tap (core/bilinear_taps.h)
+// counts when it lies in the image, held a sample, and its world position and normal are close
+// to this pixel's (the authors' accumulate_noisy_data): a 4-bit mask the post-accumulation reuses.
 //
 // A pixel is a sample (history length > 0: it reads and leaves history and enters the fit) when
 // it has a surface and its albedo reaches the demodulation's epsilon in every channel. Below it
@@ -14,7 +16,7 @@
 // (color = albedo x light) such a pixel carries no light to fit anyway.
 #include "core/modulation.h"
 #include "core/views.h"
-#include "methods/bmfr/reprojection.h"
+#include "core/bilinear_taps.h"
 
 namespace svgf {
 

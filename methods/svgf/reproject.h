@@ -7,6 +7,7 @@
 // history restarts at length 1 (disocclusion).
 #include <cmath>
 
+#include "core/bilinear_taps.h"
 #include "core/hd.h"
 #include "methods/svgf/params.h"
 #include "core/views.h"
@@ -56,20 +57,14 @@ struct ReprojectKernel {
     const float py = static_cast<float>(y) + guides.motion_y[i];
     // Far outside (or NaN motion): no history, and no float-to-int conversion out of range.
     if (!(abs_f(px) < 1e7f && abs_f(py) < 1e7f)) return h;
-    const float fx0 = floor_small(px);
-    const float fy0 = floor_small(py);
-    const int x0 = static_cast<int>(fx0);
-    const int y0 = static_cast<int>(fy0);
-    const float fx = px - fx0;
-    const float fy = py - fy0;
-    const float bilinear[4] = {(1.f - fx) * (1.f - fy), fx * (1.f - fy), (1.f - fx) * fy, fx * fy};
+    const BilinearTaps taps = BilinearTaps::at(px, py);
     float weight_sum = 0.f;
     for (int k = 0; k < 4; ++k) {
-      const int xk = x0 + (k & 1);
-      const int yk = y0 + (k >> 1);
+      const int xk = taps.x(k);
+      const int yk = taps.y(k);
       if (!tap_consistent(i, xk, yk)) continue;
       const int j = prev_guides.index(xk, yk);
-      const float w = bilinear[k];
+      const float w = taps.weight(k);
       h.color += prev_color.load(j) * w;
       h.moments += make_vec2(prev_moment1[j], prev_moment2[j]) * w;
       h.length = h.length + prev_history[j] * w;
