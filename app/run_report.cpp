@@ -45,6 +45,7 @@ std::string RunReport::add(const PlannedFrame& planned, const std::string& input
   ++frames_;
   total_ms_ += ms;
   replaced_total_ += r.replaced_samples;
+  fallback_total_ += r.fallback_pixels;
   repairs_total_ += r.repairs;
   frames_repaired_ += r.repairs.total() > 0 ? 1 : 0;
   nlohmann::json fr;
@@ -56,6 +57,7 @@ std::string RunReport::add(const PlannedFrame& planned, const std::string& input
   for (const auto& [stage, stage_ms] : r.times.entries()) fr["stage_ms"][stage] = stage_ms;
   fr["replaced_samples"] = r.replaced_samples;
   fr["repairs"] = repairs_json(r.repairs);
+  fr["fallback_pixels"] = r.fallback_pixels;
   std::ostringstream csv;
   csv << planned.number << ',' << ms << ',' << r.times.filter_ms() << ',' << r.replaced_samples;
   std::string detail = fixed(ms, 1) + " ms";
@@ -86,6 +88,7 @@ void RunReport::write(const std::string& folder) {
   json_["mean_time_ms"] = total_ms_ / frames_;
   json_["replaced_samples"] = replaced_total_;
   json_["repairs"] = repairs_json(repairs_total_);
+  json_["fallback_pixels"] = fallback_total_;
   if (with_reference_) {
     json_["mean_psnr_noisy_db"] = noisy_psnr_sum_ / with_reference_;
     json_["mean_psnr_denoised_db"] = psnr_sum_ / with_reference_;
@@ -101,6 +104,10 @@ void RunReport::print_summary(const std::string& in_dir, const std::string& out_
   std::printf("  time per frame    %s ms (mean, I/O excluded)\n", fixed(total_ms_ / frames_, 2).c_str());
   std::printf("  replaced samples  %lld (color NaN, Inf, negative or > 1e8, set to 0)\n",
               static_cast<long long>(replaced_total_));
+  if (fallback_total_ > 0)
+    std::printf("  fallback pixels   %lld (the filter had no result; the method's fallback: "
+                "docs/bad-input.md)\n",
+                static_cast<long long>(fallback_total_));
   if (frames_repaired_ > 0)
     std::fprintf(stderr,
                  "svgf: warning: bad input repaired in %d of %d frames (pixels: %s; "

@@ -35,6 +35,7 @@ class RunReport {
   int frames_ = 0, with_reference_ = 0;
   double total_ms_ = 0, psnr_sum_ = 0, noisy_psnr_sum_ = 0;
   int64_t replaced_total_ = 0;
+  int64_t fallback_total_ = 0;
   InputRepairs repairs_total_;  // the sanitize stage's, per kind (docs/bad-input.md)
   int frames_repaired_ = 0;
 };

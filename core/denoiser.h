@@ -46,12 +46,12 @@ struct InputRepairs {
 
   static InputRepairs from(const Tallies& t) {
     InputRepairs r;
-    r.color = t.count[bit(kRepairColor)];
-    r.albedo = t.count[bit(kRepairAlbedo)];
-    r.emission = t.count[bit(kRepairEmission)];
-    r.normal = t.count[bit(kRepairNormal)];
-    r.surface = t.count[bit(kRepairSurface)];
-    r.motion = t.count[bit(kRepairMotion)];
+    r.color = t.count[tally_bit(kRepairColor)];
+    r.albedo = t.count[tally_bit(kRepairAlbedo)];
+    r.emission = t.count[tally_bit(kRepairEmission)];
+    r.normal = t.count[tally_bit(kRepairNormal)];
+    r.surface = t.count[tally_bit(kRepairSurface)];
+    r.motion = t.count[tally_bit(kRepairMotion)];
     return r;
   }
   int64_t total() const { return color + albedo + emission + normal + surface + motion; }
@@ -60,13 +60,6 @@ struct InputRepairs {
     normal += o.normal; surface += o.surface; motion += o.motion;
     return *this;
   }
-
- private:
-  static int bit(uint32_t repair) {
-    int b = 0;
-    while ((repair >> b) != 1u) ++b;
-    return b;
-  }
 };
 
 // What one denoise() call did.
@@ -74,6 +67,9 @@ struct FrameReport {
   StageTimes times;
   InputRepairs repairs;
   int64_t replaced_samples = 0;  // pixels whose color was replaced (repairs.color)
+  // Pixels whose filter fell back (kTallyFilterFallback; BMFR: a block with nothing to fit, the
+  // pixel kept its accumulated color). 0 for methods without such a case.
+  int64_t fallback_pixels = 0;
 };
 
 // The report of the frame an engine has just finished (after the backend's finish()).
@@ -83,6 +79,7 @@ FrameReport frame_report(const Engine& engine) {
   r.times = engine.times();
   r.repairs = InputRepairs::from(engine.tallies());
   r.replaced_samples = r.repairs.color;
+  r.fallback_pixels = engine.tallies().count[tally_bit(kTallyFilterFallback)];
   return r;
 }
 

@@ -16,3 +16,11 @@
 #else
 #define SVGF_HD_TEMPLATE
 #endif
+
+// Before a loop of constant trip count whose body indexes a small local array: unrolled on the
+// device, the array stays in registers instead of the stack.
+#if defined(__CUDA_ARCH__)
+#define SVGF_UNROLL _Pragma("unroll")
+#else
+#define SVGF_UNROLL
+#endif

@@ -7,6 +7,16 @@
 namespace svgf {
 
 inline constexpr int kTallyBits = 8;
+// Who owns which bit: 0 .. 5 are the sanitize stage's InputRepair bits (core/sanitize.h); bit 6
+// is a pixel whose filter could not give a result and fell back (each method says to what).
+inline constexpr uint32_t kTallyFilterFallback = 1u << 6;
+
+// The index of a one-bit mask's bit: its count in Tallies::count.
+constexpr int tally_bit(uint32_t mask) {
+  int b = 0;
+  while ((mask >> b) != 1u) ++b;
+  return b;
+}
 
 struct Tallies {
   int64_t count[kTallyBits] = {};

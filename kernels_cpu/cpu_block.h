@@ -26,6 +26,10 @@ class CpuBlock {
   float min(const F& f) const { return block::reduce_rows(f, block::MinOp{}); }
   template <class F>
   float max(const F& f) const { return block::reduce_rows(f, block::MaxOp{}); }
+  template <int N, class Op, class F>
+  void reduce(Op op, int n, const F& f, float* out) const {
+    for (int k = 0; k < n; ++k) out[k] = block::reduce_rows([&](int r) { return f(r, k); }, op);
+  }
   template <class F>
   void once(const F& f) const { f(); }
   float* scratch() const { return scratch_; }

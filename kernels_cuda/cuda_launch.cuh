@@ -76,12 +76,12 @@ void launch(const K& k, int width, int height, LaunchShape shape, cudaStream_t s
 }
 
 // A block kernel (core/block_reduce.h): one thread block of block::kThreads per block, its
-// scratch and the reduction's partial sums in dynamic shared memory (beyond the 48 KB default:
+// scratch and the reductions' warp totals in dynamic shared memory (beyond the 48 KB default:
 // the kernel is allowed what it needs first).
 template <class K>
 void launch_blocks(const K& k, int blocks, cudaStream_t stream, const char* what) {
   if (blocks <= 0) return;
-  constexpr size_t kBytes = (K::kScratchFloats + block::kThreads) * sizeof(float);
+  constexpr size_t kBytes = (K::kScratchFloats + CudaBlock::kReductionFloats) * sizeof(float);
   static_assert(kBytes <= 227 * 1024, "a block's scratch must fit the shared memory of sm_90");
   SVGF_CUDA_CHECK(cudaFuncSetAttribute(block_kernel<K>, cudaFuncAttributeMaxDynamicSharedMemorySize,
                                        static_cast<int>(kBytes)),

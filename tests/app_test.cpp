@@ -170,6 +170,9 @@ TEST_CASE("svgf denoise --method wavelet: its flags reach the filter, bad values
   REQUIRE(report["denoiser"].get<std::string>().rfind("wavelet 7x7 cpu", 0) == 0);
   REQUIRE(report["mean_psnr_denoised_db"].get<double>() >
           report["mean_psnr_noisy_db"].get<double>() + 5);
+  // Every block of the synthetic scene has samples: nothing fell back, in each frame and in all.
+  REQUIRE(report["fallback_pixels"] == 0);
+  for (const auto& frame : report["frames"]) REQUIRE(frame["fallback_pixels"] == 0);
   const std::vector<std::pair<std::string, std::string>> bad = {
       {"--kernel-size", "4"}, {"--sigma-depth", "-1"}, {"--sigma-normal", "-2"},
       {"--sigma-luma", "0"}};
@@ -196,6 +199,9 @@ TEST_CASE("svgf denoise --method bmfr: its flags reach the filter, bad values na
   REQUIRE(report["denoiser"].get<std::string>().rfind("bmfr (skip) cpu", 0) == 0);
   REQUIRE(report["mean_psnr_denoised_db"].get<double>() >
           report["mean_psnr_noisy_db"].get<double>() + 5);
+  // Every block of the synthetic scene has samples: nothing fell back, in each frame and in all.
+  REQUIRE(report["fallback_pixels"] == 0);
+  for (const auto& frame : report["frames"]) REQUIRE(frame["fallback_pixels"] == 0);
   const std::vector<std::pair<std::string, std::string>> bad = {
       {"--bmfr-rank", "qr"},          {"--bmfr-noise", "-1"},
       {"--bmfr-skip-threshold", "1"}, {"--bmfr-pre-alpha", "0"},

@@ -33,11 +33,14 @@ namespace svgf::bmfr_test {
 
 constexpr int kRows = block::kRows;
 
-// sum, min and max of each block's 1024 values.
+// sum, min and max of each block's 1024 values; then three sums at once (reduce<4> with 3
+// values: v, v * v and v - 1).
 struct ReduceKernel {
   static constexpr int kScratchFloats = 1;
+  static constexpr int kOut = 6;
   const float* in = nullptr;  // kRows per block
-  float* out = nullptr;       // 3 per block
+  float* out = nullptr;       // kOut per block
+  SVGF_HD static float value(float v, int k) { return k == 0 ? v : (k == 1 ? v * v : v - 1.f); }
   SVGF_HD_TEMPLATE
   template <class Block>
   SVGF_HD void operator()(const Block& blk, int b) const {
@@ -45,17 +48,20 @@ struct ReduceKernel {
     const float s = blk.sum([&](int r) { return v[r]; });
     const float lo = blk.min([&](int r) { return v[r]; });
     const float hi = blk.max([&](int r) { return v[r]; });
+    float many[4];
+    blk.template reduce<4>(block::SumOp{}, 3, [&](int r, int k) { return value(v[r], k); }, many);
     blk.once([&] {
-      out[3 * b] = s;
-      out[3 * b + 1] = lo;
-      out[3 * b + 2] = hi;
+      out[kOut * b] = s;
+      out[kOut * b + 1] = lo;
+      out[kOut * b + 2] = hi;
+      for (int k = 0; k < 3; ++k) out[kOut * b + 3 + k] = many[k];
     });
   }
 };
 
 void block_reductions_follow_the_tree(const TestDevice& d) {
   const int blocks = 5;
-  Image in(kRows, blocks, 1), out(3, blocks, 1);
+  Image in(kRows, blocks, 1), out(ReduceKernel::kOut, blocks, 1);
   test::fill_uniform(in, -1000.f, 1000.f, 7);
   in.at(17, 2, 0) = 1e-30f;  // magnitudes far apart: the order shows in the bits
   in.at(900, 3, 0) = 3e7f;
@@ -72,6 +78,13 @@ void block_reductions_follow_the_tree(const TestDevice& d) {
     REQUIRE(std::fabs(tree - exact) <= 1e-5 * 1000 * kRows);
     REQUIRE(out.at(1, b, 0) == *std::min_element(v, v + kRows));
     REQUIRE(out.at(2, b, 0) == *std::max_element(v, v + kRows));
+    // Several values in one reduction: each is its own tree, the bits of a sum of its own.
+    for (int k = 0; k < 3; ++k) {
+      const float one = block::reduce_rows([&](int i) { return ReduceKernel::value(v[i], k); },
+                                           block::SumOp{});
+      INFO("value " << k);
+      REQUIRE(std::memcmp(&one, &out.at(3 + k, b, 0), 4) == 0);
+    }
   }
 }
 
@@ -107,6 +120,7 @@ struct LeastSquaresKernel {
 namespace {
 
 using svgf::bmfr_test::block_reductions_follow_the_tree;
+using svgf::bmfr_test::ReduceKernel;
 using svgf::bmfr_test::kRows;
 using svgf::bmfr_test::LeastSquaresKernel;
 
@@ -419,6 +433,51 @@ void flat_walls_stay_finite(const TestDevice& d) {
   }
 }
 
+// A block with no sample (every surface pixel's albedo under the epsilon) has nothing to fit:
+// its surface pixels keep the pre-accumulated color and are counted as fallback pixels, the
+// count the grid predicts (a block has a sample when any of its rows, mirrored in, is one).
+void empty_blocks_fall_back_and_are_counted(const TestDevice& d) {
+  const int w = 100, h = 70;
+  Frame f = explained_frame(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      if (x < 60 || y < 20)
+        for (int c = 0; c < 3; ++c) f.albedo.at(x, y, c) = 0.f;
+  for (int y = 40; y < 50; ++y)  // some background among them
+    for (int x = 5; x < 25; ++x) f.depth.at(x, y, 0) = 0.f;
+  const auto is_sample = [&](int i) {
+    return f.depth.plane(0)[i] > 0.f && f.albedo.plane(0)[i] > 0.f;
+  };
+  auto den = bmfr_on(d, BmfrParams());
+  for (int frame = 0; frame < 3; ++frame) {
+    Image out;
+    den->denoise(f, out);
+    const BmfrGrid grid = BmfrGrid::of(w, h, frame);
+    std::vector<bool> has_sample(static_cast<size_t>(grid.blocks()), false);
+    for (int b = 0; b < grid.blocks(); ++b)
+      for (int r = 0; r < block::kRows; ++r)
+        if (is_sample(grid.pixel_of(b, r))) has_sample[static_cast<size_t>(b)] = true;
+    const Image noisy = den->read_buffer(bmfr_buffer::kNoisy);
+    const Image filtered = den->read_buffer(bmfr_buffer::kFiltered);
+    int64_t expected = 0;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        if (!(f.depth.at(x, y, 0) > 0.f) || has_sample[static_cast<size_t>(grid.block_of(x, y))])
+          continue;
+        ++expected;
+        for (int c = 0; c < 3; ++c) REQUIRE(filtered.at(x, y, c) == noisy.at(x, y, c));
+      }
+    INFO("frame " << frame);
+    REQUIRE(expected > 500);  // the test means something: several empty blocks
+    REQUIRE(den->last_report().fallback_pixels == expected);
+    for (float v : out.data()) REQUIRE(std::isfinite(v));
+  }
+  auto clean = bmfr_on(d, BmfrParams());
+  Image out;
+  clean->denoise(explained_frame(w, h), out);
+  REQUIRE(clean->last_report().fallback_pixels == 0);
+}
+
 }  // namespace
 
 SVGF_DEVICE_TEST("bmfr: block sums, minima and maxima follow the fixed tree", "[bmfr]",
@@ -433,6 +492,8 @@ SVGF_DEVICE_TEST("bmfr: a block whose color its features explain is reproduced",
                  explained_block_reproduced)
 SVGF_DEVICE_TEST("bmfr: flat walls (rank-deficient blocks) give finite output", "[bmfr]",
                  flat_walls_stay_finite)
+SVGF_DEVICE_TEST("bmfr: blocks with nothing to fit keep the accumulated color and are counted",
+                 "[bmfr]", empty_blocks_fall_back_and_are_counted)
 
 TEST_CASE("bmfr: same bits on 1 and 2 threads; stages, defaults and errors", "[bmfr]") {
   test::SyntheticScene scene;

@@ -32,11 +32,14 @@ struct BlockLeastSquares {
   SVGF_HD_TEMPLATE
   template <class Arith, class Block>
   SVGF_HD static BlockFit solve(const Block& blk, float* a, float keep2, float* weights) {
+    // Every column's squared norm in one reduction; the largest sets the numerical-rank floor.
+    float norm2[kF];
+    blk.template reduce<kF>(block::SumOp{}, kF, [&](int r, int k) {
+      const float x = a[k * block::kRows + r];
+      return x * x;
+    }, norm2);
     float largest2 = 0.f;
-    for (int k = 0; k < kF; ++k) {
-      const float* v = a + k * block::kRows;
-      largest2 = max_f(largest2, blk.sum([&](int r) { return v[r] * v[r]; }));
-    }
+    for (int k = 0; k < kF; ++k) largest2 = max_f(largest2, norm2[k]);
     const float floor2 = keep2 * largest2;
     int kept[kF];
     int rank = 0;
@@ -51,16 +54,29 @@ struct BlockLeastSquares {
       const float alpha = x0 > 0.f ? -norm : norm;  // the sign that avoids cancellation in u0
       const float u0 = x0 - alpha;  // u = (u0, v[p + 1], ...): H = I - 2 u u^T / |u|^2
       const auto per_u2 = Arith::divide_by(below + u0 * u0);
-      for (int k = j + 1; k < kColumns; ++k) {
-        float* const w = a + k * block::kRows;
-        const float d =
-            blk.sum([&](int r) { return r < p ? 0.f : (r == p ? u0 : v[r]) * w[r]; });
-        const float f = per_u2(d + d);
-        blk.rows([&](int r) {
-          if (r >= p) w[r] = Arith::mad(-(r == p ? u0 : v[r]), f, w[r]);
-        });
-      }
-      blk.once([&] { v[p] = alpha; });  // R's diagonal (v below p keeps u, unused from here)
+      // u . w for every later column w in one reduction (H acts on each column alone, so all
+      // are taken before any changes), then w -= (2 u . w / |u|^2) u on the pivot rows.
+      constexpr int kLater = kColumns - 1;
+      const int later = kColumns - 1 - j;
+      float f[kLater];
+      blk.template reduce<kLater>(block::SumOp{}, later, [&](int r, int m) {
+        const float* w = a + (j + 1 + m) * block::kRows;
+        return r < p ? 0.f : (r == p ? u0 : v[r]) * w[r];
+      }, f);
+      SVGF_UNROLL
+      for (int m = 0; m < kLater; ++m)
+        if (m < later) f[m] = per_u2(f[m] + f[m]);
+      blk.rows([&](int r) {
+        if (r < p) return;
+        const float u = r == p ? u0 : v[r];
+        SVGF_UNROLL
+        for (int m = 0; m < kLater; ++m) {
+          if (m >= later) break;
+          float* const w = a + (j + 1 + m) * block::kRows;
+          w[r] = Arith::mad(-u, f[m], w[r]);
+        }
+        if (r == p) v[p] = alpha;  // R's diagonal (v below p keeps u, unused from here)
+      });
       kept[rank++] = j;
     }
     BlockFit fit;

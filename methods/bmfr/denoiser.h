@@ -6,7 +6,8 @@
 //                 -> noisy (the next frame's history too), history length, reprojection
 //   regression    per 32x32 block (the grid moves every frame): features and noisy ->
 //                 the block's weights, by a Householder QR (regression.h)
-//   weighted_sum  each pixel's features x its block's weights -> filtered
+//   weighted_sum  each pixel's features x its block's weights -> filtered (a block without a
+//                 fit: noisy, the pixels counted in the report as fallback_pixels)
 //   post          filtered blended with the reprojected accumulated output -> accumulated
 //                 (history); x albedo + emission -> output
 // The histories ping-pong between two slots: a frame reads slot `slot_` and writes the other.
@@ -98,7 +99,7 @@ void run_bmfr_frame(Engine& engine, const BmfrFrameBuffers& b, const BmfrParams&
   fit.skip_threshold = p.skip_threshold;
   engine.run_blocks(stage::kRegression, fit, grid.blocks());
 
-  engine.run(stage::kWeightedSum,
+  engine.run_tallying(stage::kWeightedSum,
              BmfrWeightedSum<Arith>{grid, g, b.in.position, b.noisy, b.blocks, b.filtered}, w, h);
 
   BmfrPostAccumulate post;

@@ -68,12 +68,15 @@ struct BmfrFit {
     // 2. Positions and their squares to [0, 1] over the block's fitted rows (column 0 is 1
     //    exactly there), then the rank-deficiency noise on every feature but the constant.
     float lo[kScaled], hi[kScaled];
-    for (int s = 0; s < kScaled; ++s) {
-      const float* v = a + (kScaledFirst + s) * block::kRows;
-      lo[s] = blk.min([&](int r) { return a[r] > 0.f ? v[r] : 3.4e38f; });
-      hi[s] = blk.max([&](int r) { return a[r] > 0.f ? v[r] : -3.4e38f; });
+    const auto scaled_column = [&](int s) { return a + (kScaledFirst + s) * block::kRows; };
+    blk.template reduce<kScaled>(block::MinOp{}, kScaled, [&](int r, int s) {
+      return a[r] > 0.f ? scaled_column(s)[r] : 3.4e38f;
+    }, lo);
+    blk.template reduce<kScaled>(block::MaxOp{}, kScaled, [&](int r, int s) {
+      return a[r] > 0.f ? scaled_column(s)[r] : -3.4e38f;
+    }, hi);
+    for (int s = 0; s < kScaled; ++s)
       if (lo[s] > hi[s]) lo[s] = hi[s] = 0.f;  // no surface in the block
-    }
     const bool noise = strategy == BmfrRankStrategy::Noise;
     blk.rows([&](int r) {
       if (!(a[r] > 0.f)) return;

@@ -1,8 +1,14 @@
 #pragma once
 // BMFR stage 3: the weighted sum (paper Eq. 5; the authors' weighted_sum). Each surface pixel's
 // output is its block's weights times its own features, scaled by the block's ranges, without
-// the noise; negative results are clamped to 0. Pixels without a surface, and those of a block
-// with nothing to fit (no sample in it: rank 0), keep the pre-accumulated illumination.
+// the noise; negative results are clamped to 0. Pixels without a surface keep the
+// pre-accumulated illumination; so do the surface pixels that fall back, counted in the report
+// (kTallyFilterFallback): those of a block with nothing to fit (no sample in it: rank 0), and
+// any whose sum is not finite (weights can overflow on a block near the rank threshold with
+// huge demodulated colors), so nothing non-finite reaches the output or the history.
+#include <cstdint>
+
+#include "core/tallies.h"
 #include "core/views.h"
 #include "methods/bmfr/blocks.h"
 #include "methods/bmfr/features.h"
@@ -20,13 +26,18 @@ struct BmfrWeightedSum {
   BmfrBlockData blocks;
   RgbView filtered;
 
-  SVGF_HD void operator()(int x, int y) const {
+  // Returns kTallyFilterFallback for a surface pixel that fell back, else 0.
+  SVGF_HD uint32_t operator()(int x, int y) const {
     using namespace bmfr;
     const int i = guides.index(x, y);
-    const int b = guides.is_surface(i) ? grid.block_of(x, y) : -1;
-    if (b < 0 || !(*blocks.rank(b) > 0.f)) {
+    if (!guides.is_surface(i)) {
       filtered.store(i, noisy.load(i));
-      return;
+      return 0u;
+    }
+    const int b = grid.block_of(x, y);
+    if (!(*blocks.rank(b) > 0.f)) {
+      filtered.store(i, noisy.load(i));
+      return kTallyFilterFallback;
     }
     const float* w = blocks.weights(b);
     const float* range = blocks.ranges(b);
@@ -37,7 +48,9 @@ struct BmfrWeightedSum {
       if (k >= kScaledFirst) f = scaled(f, range[2 * (k - kScaledFirst)], range[2 * (k - kScaledFirst) + 1]);
       sum = Arith::mad(make_vec3(w[3 * k], w[3 * k + 1], w[3 * k + 2]), f, sum);
     }
-    filtered.store(i, max_v(sum, 0.f));
+    const bool finite = is_finite(sum);
+    filtered.store(i, finite ? max_v(sum, 0.f) : noisy.load(i));
+    return finite ? 0u : kTallyFilterFallback;
   }
 };
 
