@@ -16,6 +16,7 @@
 #include "bench/chart_tables.h"
 #include "bench/results.h"
 #include "bench/runner.h"
+#include "bench/stage_cost.h"
 #include "bench/summary.h"
 
 using namespace svgf;
@@ -103,6 +104,26 @@ TEST_CASE("SVGF keeps its cost model and floor", "[bench][svgf]") {
   CHECK(e["cost_model"] == "bench/stage_cost.cpp");
   REQUIRE(e.contains("floor"));
   for (const json& s : e["stages"]) CHECK(s.contains("bytes_read_per_px"));
+}
+
+TEST_CASE("a BMFR run is costed in every stage and has a frame floor", "[bench][bmfr]") {
+  RunConfig c = run_config("bmfr");
+  c.denoiser.threads = 2;
+  const json e = time_run(c, fixture(), quick(), Ceilings{10.0, 1e10, "test"});
+  CHECK(e["cost_model"] == "bench/stage_cost.cpp");
+  REQUIRE(e.contains("floor"));
+  double floor_ms = 0;
+  for (const json& s : e["stages"]) {
+    INFO(s["stage"]);
+    REQUIRE(s.contains("floor"));
+    floor_ms += s["floor"]["floor_ms"].get<double>();
+  }
+  CHECK(e["floor"]["floor_ms"].get<double>() == Approx(floor_ms));
+  // The regression's rows: 25 blocks of 1024 rows over 128x128 pixels (about 1.56 a pixel),
+  // 10 planes a row.
+  const double rows = bmfr_blocks_per_px(128, 128) * 1024;
+  CHECK(rows > 1.4);
+  CHECK(stage_of(e, "regression")["bytes_read_per_px"].get<double>() == Approx(rows * 40));
 }
 
 TEST_CASE("keys are unique per configuration and name the kernel size", "[bench]") {
