@@ -24,8 +24,8 @@ data=$out/data
 # Where the chart's times come from, for the subtitle.
 subtitle="CPU: $(jq -r '.host.cpu_model + ", " + (.host.hardware_threads|tostring) + " threads"' "$results/cpu.json" 2>/dev/null || echo '-')"
 subtitle+="; GPU: $(jq -r '.device.name // "-"' "$results/gpu.json" 2>/dev/null || echo '-')"
-size=$(jq -r '[.timings[] | select(.group == "chart")][0].input | "\(.width)x\(.height)"' "$results/cpu.json" 2>/dev/null || true)
-[ -n "$size" ] && [ "$size" != "null" ] && subtitle+="; frames of $size"
+size=$(jq -r '.chart_size // empty' "$results/cpu.json" 2>/dev/null || true)
+[ -n "$size" ] && subtitle+="; frames of $size"
 subtitle+="; quality on the fixtures"
 
 for metric in psnr flip; do

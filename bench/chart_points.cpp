@@ -72,15 +72,18 @@ Quality quality_of(const Results& r, const json& e) {
   return aggregate(by_scene);
 }
 
-// The entries of a section at its suite's chart size (results from before the suites recorded
-// it have every chart entry at that size).
+// The entries of a section at its suite's chart size and scene (results from before the suites
+// recorded them have every chart entry at that size and scene).
 std::vector<const json*> at_chart_size(const Results& r, const std::string& suite,
                                        const std::string& section) {
   std::vector<const json*> v;
   const json* doc = r.suite(suite);
   const std::string size = doc ? doc->value("chart_size", "") : "";
+  const std::string scene = doc ? doc->value("chart_scene", "") : "";
   for (const json* e : r.timings(suite, section))
-    if (size.empty() || size_of(*e) == size) v.push_back(e);
+    if ((size.empty() || size_of(*e) == size) &&
+        (scene.empty() || (*e)["input"].value("scene", "") == scene))
+      v.push_back(e);
   return v;
 }
 
@@ -95,8 +98,11 @@ size_t series_index(const std::string& series) {
 std::vector<Point> chart_points(const Results& r) {
   std::vector<Point> pts;
   for (const char* suite : {"cpu", "gpu"})
-    for (const char* section : {"chart", "baselines", "wavelet", "jbf"})
+    for (const char* section : {"chart", "baselines", "wavelet", "jbf", "bmfr"})
       for (const json* e : at_chart_size(r, suite, section)) {
+        // The bmfr section's SVGF entry is the reference of a target, not a chart point.
+        if (std::string(section) == "bmfr" && (*e)["config"].value("method", "") != "bmfr")
+          continue;
         Point p;
         p.series = series_of(*e);
         p.key = (*e)["key"].get<std::string>();

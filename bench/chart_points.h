@@ -32,20 +32,21 @@ struct Point {
 
 // The series, in the order chart_points gives them: SVGF's (the chart sections), the OpenCV
 // baselines, then each other method by platform and mode: the wavelet filter's kernel sizes, the
-// Gaussian and the JBF (jbf and jbf-atrous), from the wavelet and jbf sections.
+// Gaussian and the JBF (jbf and jbf-atrous), from the wavelet and jbf sections, and BMFR (both
+// rank strategies) from the bmfr sections.
 inline const char* const kSeries[] = {
     "cpu_exact",    "cuda_exact",          "cuda_fast",         "baselines",
     "cpu_wavelet",  "cuda_exact_wavelet",  "cuda_fast_wavelet", "cpu_gaussian",
     "cuda_exact_gaussian", "cuda_fast_gaussian", "cpu_jbf", "cuda_exact_jbf",
-    "cuda_fast_jbf"};
+    "cuda_fast_jbf", "cpu_bmfr",          "cuda_exact_bmfr",   "cuda_fast_bmfr"};
 
 // The series of a timing entry: by its method, backend and mode.
 std::string series_of(const json& entry);
 // "gpu" for the CUDA series, "cpu" for the CPU ones and the OpenCV baselines.
 std::string platform(const Point& p);
 
-// A point for every configuration of the chart, baselines, wavelet and jbf sections timed at
-// its suite's chart size, grouped by series.
+// A point for every configuration of the chart, baselines, wavelet, jbf and bmfr sections timed
+// at its suite's chart size and on its chart scene, grouped by series.
 std::vector<Point> chart_points(const Results& r);
 
 // The CIS 565 kernel-size study (the wavelet sections): the wavelet filter at each kernel size

@@ -56,8 +56,8 @@ void write_points(const fs::path& out, const std::vector<Point>& pts) {
 
 // Per-frame curves of each fixture scene: one file per scene and metric, one column per config.
 void write_error_curves(const fs::path& out, const Results& r) {
-  std::vector<std::string> keys = {"noisy input", kDefaultCpu,   kDefaultFast,
-                                   kWaveletCpu,   kJbfCpu,       kJbfAtrousCpu};
+  std::vector<std::string> keys = {"noisy input", kDefaultCpu,   kDefaultFast, kWaveletCpu,
+                                   kJbfCpu,       kJbfAtrousCpu, kBmfrCpu};
   for (const json* e : r.timings("cpu", "baselines")) keys.push_back((*e)["key"]);
   std::map<std::string, std::map<std::string, json>> by_key;  // key -> scene -> entry
   std::vector<std::string> scenes;

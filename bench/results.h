@@ -19,6 +19,9 @@ inline const char* const kWaveletCpu = "wavelet cpu exact it4 k5";
 inline const char* const kWaveletFast = "wavelet cuda fast it4 k5";
 inline const char* const kJbfCpu = "jbf cpu exact r16";
 inline const char* const kJbfAtrousCpu = "jbf-atrous cpu exact l4";
+inline const char* const kBmfrCpu = "bmfr cpu exact noise";
+inline const char* const kBmfrSkipCpu = "bmfr cpu exact skip";
+inline const char* const kBmfrFast = "bmfr cuda fast noise";
 
 struct Results {
   std::map<std::string, json> suites;  // by suite name ("cpu", "gpu")

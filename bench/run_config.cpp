@@ -179,6 +179,12 @@ RunConfig jbf_config(Backend backend, Mode mode, int levels, int threads) {
   return c;
 }
 
+RunConfig bmfr_config(Backend backend, Mode mode, BmfrRankStrategy strategy, int threads) {
+  RunConfig c = project_config("bmfr", backend, mode, threads);
+  c.denoiser.bmfr.rank_strategy = strategy;
+  return c;
+}
+
 RunConfig gaussian_config(Backend backend, Mode mode, float sigma, int radius, int threads) {
   RunConfig c = project_config("gaussian", backend, mode, threads);
   c.denoiser.gaussian.sigma = sigma;

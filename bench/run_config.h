@@ -11,8 +11,8 @@
 namespace svgf::bench {
 
 struct RunConfig {
-  // A project method (parse_method's names: svgf, gaussian, wavelet, jbf, jbf-atrous), an OpenCV baseline
-  // ("cv-" names) or "noisy" (the input, quality only).
+  // A project method (parse_method's names: svgf, gaussian, wavelet, jbf, jbf-atrous, bmfr), an
+  // OpenCV baseline ("cv-" names) or "noisy" (the input, quality only).
   std::string method = "svgf";
   Baseline baseline;       // when method is a baseline
   DenoiserConfig denoiser;  // a project method's settings (threads also apply to baselines)
@@ -34,6 +34,8 @@ RunConfig wavelet_config(Backend backend, Mode mode, int kernel_size, int thread
 // The JBF at its defaults: the full window (levels 0, method jbf) or the a-trous form with
 // `levels` levels (method jbf-atrous).
 RunConfig jbf_config(Backend backend, Mode mode, int levels, int threads);
+// BMFR at its defaults but for the rank-deficiency strategy.
+RunConfig bmfr_config(Backend backend, Mode mode, BmfrRankStrategy strategy, int threads);
 // The project's Gaussian blur with this sigma and radius (0: ceil(3 sigma)).
 RunConfig gaussian_config(Backend backend, Mode mode, float sigma, int radius, int threads);
 

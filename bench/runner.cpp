@@ -40,8 +40,8 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
   if (c.method == "noisy") throw std::invalid_argument("the noisy input has no time to measure");
   if (fs.frames.empty()) throw std::invalid_argument("time_run: no frames");
   const bool project = c.project(), cuda = c.cuda();
-  // Bytes and operations are counted for every SVGF stage and for the other methods' filter
-  // stages (bench/stage_cost.h); a frame floor needs them all.
+  // Bytes and operations are counted for every SVGF and BMFR stage and for the other methods'
+  // filter stages (bench/stage_cost.h); a frame floor needs them all.
   const bool frame_costed = project && frame_is_costed(c.denoiser.method);
   const double pixels = static_cast<double>(fs.width) * fs.height;
   const bool emission = !fs.frames.front().emission.empty();
@@ -137,7 +137,8 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
     const std::string& name = stage_names[si];
     const Summary st = summarize(stage_ms[si]);
     const std::optional<StageCost> counted =
-        project ? method_stage_cost(c.denoiser, name, emission, surface) : std::nullopt;
+        project ? method_stage_cost(c.denoiser, name, emission, surface, fs.width, fs.height)
+                : std::nullopt;
     const StageCost cost = counted.value_or(StageCost{});
     if (st.max <= 0 && cost.bytes() <= 0) continue;  // not run by this backend/mode
     json e;

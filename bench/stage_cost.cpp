@@ -1,9 +1,9 @@
 // Bytes and operations per pixel of every SVGF stage, read off the functors in methods/svgf/:
 // exact mode (both backends) and the SvgfFast flavor (fast mode, methods/svgf/flavors.h), counted
-// by hand; and of the filter stage of the JBF (methods/jbf/) and of the wavelet filter
-// (methods/wavelet/), in both modes. tests/bench_stage_cost_test.cpp checks exact mode's plane counts (bytes) against the
-// kernels; the operation counts, and everything of fast mode, are not checked (see
-// stage_cost.h). Conventions (docs/benchmarks.md):
+// by hand; of every BMFR stage (methods/bmfr/); and of the filter stage of the JBF (methods/jbf/)
+// and of the wavelet filter (methods/wavelet/), in both modes. tests/bench_stage_cost_test.cpp
+// checks exact mode's plane counts (bytes) against the kernels; the operation counts, and
+// everything of fast mode, are not checked (see stage_cost.h). Conventions (docs/benchmarks.md):
 //  - bytes: every plane the kernel reads, once, plus every plane it writes, once; 4 bytes a
 //    value. Neighbour taps are assumed served by the caches (that is the floor, not a model);
 //  - the steady state: a surface pixel whose history is at least spatial_variance_history frames
@@ -15,6 +15,7 @@
 #include "bench/stage_cost.h"
 
 #include "core/normal_weight.h"
+#include "methods/bmfr/denoiser.h"
 #include "methods/jbf/denoiser.h"
 #include "methods/wavelet/denoiser.h"
 
@@ -80,13 +81,34 @@ bool tap_in_range(const SvgfParams& p) {
 }
 
 // The sanitize stage reads every input plane the pipeline uses and, on clean input, writes
-// nothing (the same kernel in both modes).
-StageCost sanitize_cost(bool emission) {
-  const double e = emission ? 3 : 0;
+// nothing (the same kernel in both modes). `position`: the method reads world positions (BMFR),
+// which sanitize checks too: 6 more bound tests.
+StageCost sanitize_cost(bool emission, bool position = false) {
+  const double e = emission ? 3 : 0, p = position ? 3 : 0;
   StageCost c;
-  c.read = (3 + 3 + e + 3 + 1 + 2 + 2) * kFloat;
-  c.ops = kSanitize + (emission ? 6 : 0);
-  c.planes = "R color 3, albedo 3, emission 3 (if any), normal 3, depth, gradient 2, motion 2";
+  c.read = (3 + 3 + e + 3 + p + 1 + 2 + 2) * kFloat;
+  c.ops = kSanitize + (emission ? 6 : 0) + (position ? 6 : 0);
+  c.planes = std::string("R color 3, albedo 3, emission 3 (if any), normal 3, ") +
+             (position ? "position 3, " : "") + "depth, gradient 2, motion 2";
+  return c;
+}
+
+StageCost download_cost() {
+  StageCost c;
+  c.written = 3 * kFloat;
+  c.planes = "device to host: output 3";
+  return c;
+}
+
+// The frame's upload to the device (kernels_cuda/cuda_backend.h): the input planes in one copy,
+// then the world positions when the method reads them.
+StageCost upload_cost(bool emission, bool position) {
+  StageCost c;
+  c.read = (15 + (emission ? 3 : 0) + (position ? 3 : 0)) * kFloat;
+  c.planes = std::string(
+                 "host to device: color 3, albedo 3, normal 3, depth, depth dx/dy 2, motion 2, "
+                 "mesh id, emission 3 (if any)") +
+             (position ? ", position 3" : "");
   return c;
 }
 
@@ -291,24 +313,139 @@ StageCost times(StageCost c, int passes) {
   return c;
 }
 
+// --- BMFR (methods/bmfr/) -------------------------------------------------------------------
+// Accumulate and post are exact functors in both modes (CUDA compiles them with the exact flags);
+// fast mode (FastArith) changes the regression and the weighted sum only.
+// demodulated() (core/modulation.h), emission or zero: subtraction 3, max 3, albedo clamp 3,
+// divisions 3; remodulated(): albedo clamp 3, product 3, sum 3.
+constexpr double kBmfrDemodulate = 12;
+constexpr double kBmfrRemodulate = 9;
+// BilinearTaps::at (core/bilinear_taps.h): floors 2, conversions 2, fractions 2; a tap's
+// weight() averages 2 (4 subtractions and 4 products over the four taps).
+constexpr double kBilinearAt = 6;
+constexpr double kBilinearWeight = 2;
+// accumulate.h, a sample with its four taps accepted: demodulation 12; the sample test (surface
+// 1, two min 2, compare 1) 4; x + motion with conversions 4; the taps' position 6; per tap the
+// history test 1, |dp|^2 and |dn|^2 (3 + 5 each) 16, their limits 2, the weight 2, the
+// accumulation (weight 1, length 2, color 6) 9: 30; normalization (test 1, divisions 4) 5;
+// blend (n + 1, reciprocal, max 3; color 10) 13; history length (+1, min, select) 3; the
+// accepted mask to float 1.
+constexpr double kBmfrAccumulate = kBmfrDemodulate + 4 + 4 + kBilinearAt +
+                                   4 * (1 + 16 + 2 + kBilinearWeight + 9) + 5 + 13 + 3 + 1;  // 168
+// Not a sample (background): demodulation, the surface test 1, x + motion 4, the taps' position,
+// the weight test 1, the length select 1, the mask 1.
+constexpr double kBmfrAccumulateNoSample = kBmfrDemodulate + 1 + 4 + kBilinearAt + 1 + 1 + 1;  // 26
+// post.h, four taps accepted: the mask to int 1, the taps' position 6, per tap the weight 2 and
+// the accumulation (weight 1, color 6) 9; test 1; blend (1 / n, max 2; prev / total 3,
+// f a + prev (1 - a) 10) 15; remodulation 9. Without history (background): the mask 1 and the
+// remodulation.
+constexpr double kBmfrPost = 1 + kBilinearAt + 4 * (kBilinearWeight + 7) + 1 + 15 + kBmfrRemodulate;
+constexpr double kBmfrPostNoHistory = 1 + kBmfrRemodulate;
+// features.h's scaled(): range 1, |range| > 1 2, (v - lo) / range 2 (counted with the division).
+constexpr double kBmfrScaled = 5;
+// weighted_sum.h on a surface pixel of a fitted block: the surface and rank tests 2, the squared
+// positions 3, six scaled features, ten weight x feature products into the sum (exact: mul + add
+// for 3 channels, 6; fast: 3 FMA), the clamp at 0 3. Background: the surface test.
+constexpr double kBmfrWeightedSumBase = 2 + 3 + bmfr::kScaled * kBmfrScaled + 3;
+constexpr double kBmfrWeightedSumExact = kBmfrWeightedSumBase + bmfr::kFeatures * 6;  // 98
+constexpr double kBmfrWeightedSumFast = kBmfrWeightedSumBase + bmfr::kFeatures * 3;   // 68
+// The regression (regression.h, block_qr.h), a row of a block. A block sum, min or max costs a
+// row its operation (1023 of them over 1024 rows: four a thread, then the 255 of the tree).
+//   fill: the row's sample test 1, squared positions 3, the select into 13 columns 13 (17);
+//   ranges: 12 reductions (min and max of the six scaled features), each a test, a select and
+//     the min/max (36);
+//   scale and noise, a sample's row only: test 1, six scaled() 30, under the noise strategy nine
+//     features' noise (the hash to float 1, times 2^-24 1, 2u - 1 2, times amount 1, added 1) 54;
+//     another row: the test;
+//   QR: the largest column norm, ten sums of squares (20); per kept column the norm below the
+//     pivot (square, select, sum: 3); per pair (kept column, later column; 75 with all 10 kept
+//     and 3 colors) the dot product (the u or v select, the above-pivot select, mul, sum: 4) and
+//     the reflection's update (select, then mul + sub exact, one FMA fast: 3 or 2).
+constexpr int kBmfrPairs =
+    bmfr::kFeatures * (bmfr::kColumns - 1) - bmfr::kFeatures * (bmfr::kFeatures - 1) / 2;  // 75
+constexpr double kBmfrRowFill = 1 + 3 + bmfr::kColumns;
+constexpr double kBmfrRowRanges = 2 * bmfr::kScaled * 3;
+constexpr double kBmfrRowScale = 1 + bmfr::kScaled * kBmfrScaled;
+constexpr double kBmfrRowNoise = (bmfr::kFeatures - 1) * 6;
+constexpr double kBmfrRowQr = 2 * bmfr::kFeatures + 3 * bmfr::kFeatures;
+constexpr double kBmfrRowPairExact = 4 + 3, kBmfrRowPairFast = 4 + 2;
+// A block's own work, on one thread: per kept column its norm (x0^2 + below 2, two tests 2,
+// sqrt 1, the sign 1, u0 1, |u|^2 2; fast also the reciprocal of |u|^2 1) 9; per pair d + d and
+// the scale by 1 / |u|^2 2; max/min |R_ii| (10 abs, 18 min/max, a division) 29; the scaled
+// ranges' empty-block test 6; back substitution, per color 45 mul + sub and 10 divisions.
+constexpr double kBmfrBlockExact = 9 * bmfr::kFeatures + 2 * kBmfrPairs + 29 + bmfr::kScaled +
+                                   3 * (bmfr::kFeatures * (bmfr::kFeatures - 1) + bmfr::kFeatures);
+constexpr double kBmfrBlockFast = kBmfrBlockExact + bmfr::kFeatures;
+// Planes a row reads: its pixel's sample test (history length), normal 3, position 3 and
+// pre-accumulated color 3, loaded for every row (zero rows select 0 after the load).
+constexpr int kBmfrRowPlanes = 1 + 3 + 3 + 3;
+
+StageCost bmfr_regression(Mode mode, const BmfrParams& p, double surface_fraction, int width,
+                          int height) {
+  const bool fast = mode == Mode::Fast;
+  const bool noise = p.rank_strategy == BmfrRankStrategy::Noise;
+  const double blocks = bmfr_blocks_per_px(width, height);
+  const double rows = blocks * block::kRows;
+  const double shared = kBmfrRowFill + kBmfrRowRanges + kBmfrRowQr +
+                        kBmfrPairs * (fast ? kBmfrRowPairFast : kBmfrRowPairExact);
+  const double sample_row = shared + kBmfrRowScale + (noise ? kBmfrRowNoise : 0);
+  const double other_row = shared + 1;
+  const double s = surface_fraction < 0 ? 0 : (surface_fraction > 1 ? 1 : surface_fraction);
+  StageCost c;
+  c.read = rows * kBmfrRowPlanes * kFloat;
+  c.written = blocks * BmfrBlockData::kFloats * kFloat;
+  c.ops = rows * (s * sample_row + (1 - s) * other_row) +
+          blocks * (fast ? kBmfrBlockFast : kBmfrBlockExact);
+  c.planes =
+      "per block row R history length, normal 3, position 3, noisy 3; per block W weights 30, "
+      "ranges 12, rank, condition";
+  return c;
+}
+
+StageCost bmfr_pixel_cost(Mode mode, const std::string& name, bool emission, bool surface,
+                          int width, int height) {
+  const double e = emission ? 3 : 0;
+  StageCost c;
+  if (name == bmfr_stage::kAccumulate) {
+    // Always: position 3, normal 3, albedo 3, color 3, emission, depth, motion 2; a sample also
+    // reads the previous frame's length, position 3, normal 3 and noisy 3 at its taps.
+    c.read = (3 + 3 + 3 + 3 + e + 1 + 2 + (surface ? 10 : 0)) * kFloat;
+    // noisy 3, length, position 3, normal 3, the reprojection 3
+    c.written = (3 + 1 + 3 + 3 + 3) * kFloat;
+    c.ops = surface ? kBmfrAccumulate : kBmfrAccumulateNoSample;
+    c.planes =
+        "R position 3, normal 3, albedo 3, color 3, emission 3 (if any), depth, motion 2, previous "
+        "length, position 3, normal 3, noisy 3 (background: not the previous); W noisy 3, length, "
+        "position 3, normal 3, reprojection (x, y, taps) 3";
+  } else if (name == bmfr_stage::kWeightedSum) {
+    // A surface pixel reads its block's weights, ranges and rank once (counted a block).
+    const double block_floats = BmfrBlockData::kWeights + BmfrBlockData::kRanges + 1;
+    c.read = surface ? (1 + 3 + 3 + bmfr_blocks_per_px(width, height) * block_floats) * kFloat
+                     : (1 + 3) * kFloat;
+    c.written = 3 * kFloat;
+    c.ops = surface ? (mode == Mode::Fast ? kBmfrWeightedSumFast : kBmfrWeightedSumExact) : 1;
+    c.planes =
+        "R depth, normal 3, position 3, per block weights 30, ranges 12, rank (background: depth, "
+        "noisy 3); W filtered 3";
+  } else if (name == bmfr_stage::kPost) {
+    // Always the taps mask, filtered 3, albedo 3, emission; with history also the previous
+    // position (x, y), the length and the previous accumulated output 3 at the taps.
+    c.read = (1 + 3 + 3 + e + (surface ? 2 + 1 + 3 : 0)) * kFloat;
+    c.written = (3 + 3) * kFloat;  // accumulated 3, output 3
+    c.ops = surface ? kBmfrPost : kBmfrPostNoHistory;
+    c.planes =
+        "R taps mask, filtered 3, albedo 3, emission 3 (if any), previous x, y, length, previous "
+        "accumulated 3 (background: the first four); W accumulated 3, output 3";
+  }
+  return c;
+}
+
 }  // namespace
 
 StageCost stage_cost(Mode mode, Stage stage, const SvgfParams& p, bool emission,
                      double surface_fraction) {
-  if (stage == Stage::Upload) {  // kernels_cuda/cuda_backend.h: the input planes in one copy
-    StageCost c;
-    c.read = (15 + (emission ? 3 : 0)) * kFloat;
-    c.planes =
-        "host to device: color 3, albedo 3, normal 3, depth, depth dx/dy 2, motion 2, "
-        "mesh id, emission 3 (if any)";
-    return c;
-  }
-  if (stage == Stage::Download) {
-    StageCost c;
-    c.written = 3 * kFloat;
-    c.planes = "device to host: output 3";
-    return c;
-  }
+  if (stage == Stage::Upload) return upload_cost(emission, false);
+  if (stage == Stage::Download) return download_cost();
   return blend(pixel_cost(mode, stage, p, emission, true),
                pixel_cost(mode, stage, p, emission, false), surface_fraction);
 }
@@ -358,8 +495,31 @@ StageCost wavelet_atrous_cost(Mode mode, const WaveletParams& p, double surface_
   return c;
 }
 
+double bmfr_blocks_per_px(int width, int height) {
+  if (width <= 0 || height <= 0) return 0;
+  double blocks = 0;
+  for (int k = 0; k < bmfr::kOffsetCount; ++k) blocks += BmfrGrid::of(width, height, k).blocks();
+  return blocks / bmfr::kOffsetCount / (static_cast<double>(width) * height);
+}
+
+std::optional<StageCost> bmfr_stage_cost(Mode mode, const BmfrParams& p, const std::string& name,
+                                         bool emission, double surface_fraction, int width,
+                                         int height) {
+  if (name == kSanitizeStage) return sanitize_cost(emission, true);
+  if (name == kUploadStage) return upload_cost(emission, true);
+  if (name == kDownloadStage) return download_cost();
+  if (name == bmfr_stage::kRegression)
+    return bmfr_regression(mode, p, surface_fraction, width, height);
+  if (name != bmfr_stage::kAccumulate && name != bmfr_stage::kWeightedSum &&
+      name != bmfr_stage::kPost)
+    return std::nullopt;
+  return blend(bmfr_pixel_cost(mode, name, emission, true, width, height),
+               bmfr_pixel_cost(mode, name, emission, false, width, height), surface_fraction);
+}
+
 std::optional<StageCost> method_stage_cost(const DenoiserConfig& d, const std::string& name,
-                                           bool emission, double surface_fraction) {
+                                           bool emission, double surface_fraction, int width,
+                                           int height) {
   switch (d.method) {
     case Method::Svgf:
       if (const std::optional<Stage> s = svgf_cost_stage(name))
@@ -377,13 +537,14 @@ std::optional<StageCost> method_stage_cost(const DenoiserConfig& d, const std::s
     case Method::Wavelet:
       if (name != wavelet_stage::kAtrous) return std::nullopt;
       return wavelet_atrous_cost(d.mode, d.wavelet, surface_fraction);
-    case Method::Gaussian:
     case Method::Bmfr:
+      return bmfr_stage_cost(d.mode, d.bmfr, name, emission, surface_fraction, width, height);
+    case Method::Gaussian:
       return std::nullopt;
   }
   return std::nullopt;
 }
 
-bool frame_is_costed(Method m) { return m == Method::Svgf; }
+bool frame_is_costed(Method m) { return m == Method::Svgf || m == Method::Bmfr; }
 
 }  // namespace svgf::bench

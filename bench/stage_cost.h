@@ -2,19 +2,21 @@
 // What each pipeline stage must move and compute per pixel: the one place the benchmark's
 // bandwidth, roofline floor and docs/benchmarks.md numbers come from. stage_cost.cpp lists, per
 // kernel, the planes it reads and writes (4-byte floats or mesh ids) and a hand count of its
-// floating-point operations. Counted: every SVGF stage; of the other methods the filter stage
-// alone (the JBF's full window or a-trous levels, the wavelet's a-trous passes), so they have
-// per-stage floors and per-tap costs but no frame floor.
+// floating-point operations. Counted: every SVGF stage and every BMFR stage (frame floors); of
+// the other methods the filter stage alone (the JBF's full window or a-trous levels, the
+// wavelet's a-trous passes), so they have per-stage floors and per-tap costs but no frame floor.
 //
 // Checked: exact mode's plane counts, surface and background pixel, by
 // tests/bench_stage_cost_test.cpp, which runs each stage functor on the CPU and finds the planes
-// its output depends on and the planes it stores. Not checked: the operation counts (hand
-// counts), and fast mode (SvgfFast exists only under nvcc; its fused kernels are counted from
-// the same functors by hand).
+// its output depends on and the planes it stores (BMFR's regression: the planes its block's
+// weights depend on and the per-block values it stores). Not checked: the operation counts
+// (hand counts), and fast mode (SvgfFast and FastArith exist only under nvcc; their kernels are
+// counted from the same functors by hand).
 #include <optional>
 #include <string>
 
 #include "core/stage_times.h"
+#include "methods/bmfr/params.h"
 #include "methods/jbf/params.h"
 #include "methods/svgf/params.h"
 #include "methods/wavelet/params.h"
@@ -80,11 +82,26 @@ StageCost jbf_filter_cost(Mode mode, const JbfParams& p, double surface_fraction
 // The wavelet filter's a-trous passes in one frame (methods/wavelet/atrous.h), all p.iterations.
 StageCost wavelet_atrous_cost(Mode mode, const WaveletParams& p, double surface_fraction);
 
-// The model's count of stage `name` of the configured method, none where that stage has no
-// model (see the top of this file). `d.jbf.levels` is the a-trous form's level count as the
-// denoiser runs it (0: the full window).
+// BMFR's stage `name` (methods/bmfr/: sanitize, accumulate, regression, weighted_sum, post, and
+// the CUDA transfers) on width x height frames; none for another name. The regression is counted
+// a row of its blocks (1024 rows, each one pixel's features; rows outside the image mirror
+// pixels inside) times the rows per pixel, plus each block's own work and output times the
+// blocks per pixel (bmfr_blocks_per_px). Its scratch (shared memory on CUDA, task memory on the
+// CPU) moves no bytes. Every column is counted as kept: true of the noise strategy in the steady
+// state; for skip, whose skipped columns save their reflections, an upper bound.
+std::optional<StageCost> bmfr_stage_cost(Mode mode, const BmfrParams& p, const std::string& name,
+                                         bool emission, double surface_fraction, int width,
+                                         int height);
+// Blocks per pixel of BMFR's grid at width x height: the mean over the grid's 16 offsets (the
+// grid sticks out of the image by up to a block on each side: about (w/32 + 1)(h/32 + 1) blocks).
+double bmfr_blocks_per_px(int width, int height);
+
+// The model's count of stage `name` of the configured method on width x height frames, none
+// where that stage has no model (see the top of this file). `d.jbf.levels` is the a-trous
+// form's level count as the denoiser runs it (0: the full window).
 std::optional<StageCost> method_stage_cost(const DenoiserConfig& d, const std::string& name,
-                                           bool emission, double surface_fraction);
+                                           bool emission, double surface_fraction, int width,
+                                           int height);
 // Whether every filtering stage of `m` is counted, so that its frame has a floor.
 bool frame_is_costed(Method m);
 

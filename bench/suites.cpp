@@ -72,6 +72,18 @@ std::vector<RunConfig> jbf_configs(Backend backend, Mode mode, int threads) {
           jbf_config(backend, mode, kJbfDefaultLevels, threads)};
 }
 
+// BMFR (issue 11): exact mode with each rank-deficiency strategy (noise, the paper's, and skip),
+// on the GPU also fast mode with noise.
+std::vector<RunConfig> bmfr_configs(Backend backend, int threads) {
+  std::vector<RunConfig> v = {bmfr_config(backend, Mode::Exact, BmfrRankStrategy::Noise, threads),
+                              bmfr_config(backend, Mode::Exact, BmfrRankStrategy::Skip, threads)};
+  if (backend == Backend::Cuda)
+    v.push_back(bmfr_config(backend, Mode::Fast, BmfrRankStrategy::Noise, threads));
+  return v;
+}
+// The issue's CPU target: BMFR at most 1.5x SVGF's frame time on 2 cores.
+constexpr int kBmfrTargetThreads = 2;
+
 bool same_size(const std::string& a, const std::string& b) {
   int aw = 0, ah = 0, bw = 0, bh = 0;
   parse_size(a, aw, ah);
@@ -292,19 +304,21 @@ int run_cpu_suite(const SuiteOptions& o, SuiteWriter& w) {
   std::vector<int> threads = {1};
   if (all > 1) threads.push_back(all);
   std::map<int, Ceilings> ceilings;
-  json cj = json::object();
-  for (int t : threads) {
+  w.doc()["ceilings"] = json::object();
+  // The ceilings of t threads, measured the first time they are needed.
+  const auto ceilings_of = [&](int t) -> const Ceilings& {
+    if (ceilings.count(t)) return ceilings[t];
     Ceilings c;
     c.copy_gbs = host_copy_gbs(t);
     c.ops_per_s = host_float_ops_per_s(t);
     c.copy_what = "memcpy of 256 MiB on " + std::to_string(t) + " thread(s)";
-    ceilings[t] = c;
-    cj[std::to_string(t)] = {{"copy_gbs", c.copy_gbs}, {"ops_per_s", c.ops_per_s}};
+    w.doc()["ceilings"][std::to_string(t)] = {{"copy_gbs", c.copy_gbs}, {"ops_per_s", c.ops_per_s}};
+    w.save();
     std::printf("host ceilings, %d thread(s): copy %.1f GB/s, float ops %.2f G/s\n", t, c.copy_gbs,
                 c.ops_per_s / 1e9);
-  }
-  w.doc()["ceilings"] = cj;
-  w.save();
+    return ceilings[t] = c;
+  };
+  for (int t : threads) ceilings_of(t);
   FrameCache frames(o);
 
   if (wanted(o, "sizes")) {
@@ -347,6 +361,23 @@ int run_cpu_suite(const SuiteOptions& o, SuiteWriter& w) {
       timed(w, "jbf", c, frames.get(o.chart_size), budgeted(o), ceilings[all]);
     w.finish_section("jbf");
   }
+  if (wanted(o, "bmfr")) {
+    for (const RunConfig& c : bmfr_configs(Backend::Cpu, all))
+      timed(w, "bmfr", c, frames.get(o.chart_size), o.timing, ceilings[all]);
+    // The CPU target at full coverage: BMFR on 2 threads and on all, beside SVGF's default on
+    // 2 threads timed in the same sitting (the ratio's two times from one load situation).
+    const FrameSet room =
+        generate_frames(kFullCoverageScene, frames.get(o.chart_size).width,
+                        frames.get(o.chart_size).height, o.distinct_frames, o.cache_dir);
+    std::vector<int> room_threads = {kBmfrTargetThreads};
+    if (all != kBmfrTargetThreads) room_threads.push_back(all);
+    for (int t : room_threads)
+      timed(w, "bmfr", bmfr_config(Backend::Cpu, Mode::Exact, BmfrRankStrategy::Noise, t), room,
+            o.timing, ceilings_of(t));
+    timed(w, "bmfr", svgf_config(Backend::Cpu, Mode::Exact, 4, 1, kBmfrTargetThreads), room,
+          o.timing, ceilings_of(kBmfrTargetThreads));
+    w.finish_section("bmfr");
+  }
   if (wanted(o, "quality")) {
     const std::vector<FrameSet> fixtures = load_fixtures(o);
     std::vector<RunConfig> configs;
@@ -357,6 +388,7 @@ int run_cpu_suite(const SuiteOptions& o, SuiteWriter& w) {
       configs.push_back(svgf_config(Backend::Cpu, Mode::Exact, it, tap, all));
     for (const RunConfig& c : study_configs(Backend::Cpu, Mode::Exact, all)) configs.push_back(c);
     for (const RunConfig& c : jbf_configs(Backend::Cpu, Mode::Exact, all)) configs.push_back(c);
+    for (const RunConfig& c : bmfr_configs(Backend::Cpu, all)) configs.push_back(c);
     if (baselines_available())
       for (const Baseline& b : default_baselines()) configs.push_back(baseline_config(b, all));
     quality_all(w, configs, fixtures);
@@ -452,6 +484,19 @@ int run_gpu_suite(const SuiteOptions& o, SuiteWriter& w) {
     }
     w.finish_section("jbf");
   }
+  if (wanted(o, "bmfr")) {
+    // At the chart size, and at the iterations size at full coverage (the issue's targets:
+    // fast mode at 1080p, exact mode against its floor).
+    int cw = 0, ch = 0;
+    parse_size(it_size, cw, ch);
+    const FrameSet room =
+        generate_frames(kFullCoverageScene, cw, ch, o.distinct_frames, o.cache_dir);
+    for (const RunConfig& c : bmfr_configs(Backend::Cuda, 0)) {
+      timed(w, "bmfr", c, frames.get(o.chart_size), o.timing, ceilings);
+      timed(w, "bmfr", c, room, o.timing, ceilings);
+    }
+    w.finish_section("bmfr");
+  }
   if (wanted(o, "quality")) {
     const std::vector<FrameSet> fixtures = load_fixtures(o);
     if (!fixtures.empty()) {
@@ -459,7 +504,9 @@ int run_gpu_suite(const SuiteOptions& o, SuiteWriter& w) {
           {svgf_config(Backend::Cpu, Mode::Exact, 4, 1, 0), "it4 tap1"},
           {wavelet_config(Backend::Cpu, Mode::Exact, 5, 0), "wavelet it4 k5"},
           {jbf_config(Backend::Cpu, Mode::Exact, 0, 0), "jbf r16"},
-          {jbf_config(Backend::Cpu, Mode::Exact, kJbfDefaultLevels, 0), "jbf-atrous l4"}};
+          {jbf_config(Backend::Cpu, Mode::Exact, kJbfDefaultLevels, 0), "jbf-atrous l4"},
+          {bmfr_config(Backend::Cpu, Mode::Exact, BmfrRankStrategy::Noise, 0), "bmfr noise"},
+          {bmfr_config(Backend::Cpu, Mode::Exact, BmfrRankStrategy::Skip, 0), "bmfr skip"}};
       for (const auto& [config, what] : checks) try {
           w.add("checks", "quality", bitwise_check(fixtures, config, what));
         } catch (const std::exception& e) {
@@ -472,6 +519,7 @@ int run_gpu_suite(const SuiteOptions& o, SuiteWriter& w) {
         for (const RunConfig& c : study_configs(Backend::Cuda, m, 0)) configs.push_back(c);
         for (const RunConfig& c : jbf_configs(Backend::Cuda, m, 0)) configs.push_back(c);
       }
+      for (const RunConfig& c : bmfr_configs(Backend::Cuda, 0)) configs.push_back(c);
       quality_all(w, configs, fixtures);
     }
     w.finish_section("quality");
@@ -483,9 +531,10 @@ int run_gpu_suite(const SuiteOptions& o, SuiteWriter& w) {
 
 std::vector<std::string> suite_sections(const std::string& name) {
   if (name == "cpu")
-    return {"sizes", "chart", "coverage", "baselines", "wavelet", "jbf", "quality"};
+    return {"sizes", "chart", "coverage", "baselines", "wavelet", "jbf", "bmfr", "quality"};
   if (name == "gpu")
-    return {"sizes", "iterations", "coverage", "blocks", "chart", "wavelet", "jbf", "quality"};
+    return {"sizes", "iterations", "coverage", "blocks", "chart",
+            "wavelet", "jbf", "bmfr", "quality"};
   throw std::invalid_argument("unknown suite '" + name + "' (known: cpu, gpu)");
 }
 
@@ -497,8 +546,10 @@ int run_suite(const SuiteOptions& o) {
   SuiteWriter w(o, o.sections.empty() ? all : o.sections);
   int cw = 0, ch = 0;
   parse_size(o.chart_size, cw, ch);
-  // The chart reads its points at this size (other sections time some methods at more sizes).
+  // The chart reads its points at this size and scene (other sections time some methods at
+  // more sizes, and BMFR's on the full-coverage scene too).
   w.doc()["chart_size"] = std::to_string(cw) + "x" + std::to_string(ch);
+  w.doc()["chart_scene"] = o.scene;
   const int rc = o.name == "cpu" ? run_cpu_suite(o, w) : run_gpu_suite(o, w);
   w.doc()["finished"] = now_iso();
   w.save();

@@ -24,12 +24,14 @@ struct SuiteOptions {
   std::string command;  // how the suite was invoked, for the report
 };
 
-// Sections: cpu: sizes, chart, coverage, baselines, wavelet, jbf, quality; gpu: sizes,
-// iterations, coverage, blocks, chart, wavelet, jbf, quality. The wavelet section is the CIS 565
-// kernel-size study (3x3 to 9x9, 4 passes) with its 9x9 comparisons (a Gaussian, a dense
+// Sections: cpu: sizes, chart, coverage, baselines, wavelet, jbf, bmfr, quality; gpu: sizes,
+// iterations, coverage, blocks, chart, wavelet, jbf, bmfr, quality. The wavelet section is the
+// CIS 565 kernel-size study (3x3 to 9x9, 4 passes) with its 9x9 comparisons (a Gaussian, a dense
 // edge-stopping filter); jbf times the JBF's full window and a-trous form at the chart size
 // (the GPU also at the iterations size, with 1 to 4 levels). On the CPU both run under the
-// baselines' time budget.
+// baselines' time budget. bmfr times BMFR exact with both rank strategies (GPU: fast too) at the
+// chart size and at full coverage (camera-pan; CPU: chart size, 2 threads and all, with SVGF's
+// default on 2 threads beside it; GPU: the iterations size).
 std::vector<std::string> suite_sections(const std::string& name);
 int run_suite(const SuiteOptions& options);
 

@@ -9,6 +9,7 @@
 
 #include "bench/stage_cost.h"
 #include "bench/targets.h"
+#include "methods/bmfr/denoiser.h"
 
 namespace svgf::bench {
 namespace {
@@ -180,6 +181,67 @@ void targets_table(std::ostringstream& md, const std::vector<TargetResult>& targ
          << (i + 1 == t.context.size() ? ")" : "");
     md << " | **" << to_string(t.verdict) << "** | " << t.source << " |\n";
   }
+}
+
+// How often a block-fitting method's blocks were rank-deficient, and how well conditioned the
+// fits were, per fixture scene (quality entries with "blocks": BMFR's).
+void block_table(std::ostringstream& md, const Results& r) {
+  std::vector<std::string> keys;
+  for (const char* suite : {"gpu", "cpu"})
+    if (const json* doc = r.suite(suite))
+      for (const json& e : doc->value("quality", json::array()))
+        if (e.contains("blocks") && !e.contains("error") &&
+            std::find(keys.begin(), keys.end(), e["key"]) == keys.end())
+          keys.push_back(e["key"]);
+  if (keys.empty()) return;
+  md << "\n## Blocks of the block-fitting methods per fixture scene\n\nEvery block of every "
+        "frame: rank-deficient, a column dropped (skip: under the threshold against the "
+        "block's largest column; either strategy: numerically zero); empty, no sample in the "
+        "block (its pixels pass through); max/min |R_ii|, over the kept columns of the blocks "
+        "that fitted something (a lower bound of the condition number).\n\n| configuration | "
+        "scene | blocks | rank-deficient | empty | max/min abs(R_ii) median | p95 | max "
+        "|\n|---|---|---:|---:|---:|---:|---:|---:|\n";
+  for (const std::string& k : keys)
+    for (const auto& [scene, e] : r.quality(k)) {
+      if (!e.contains("blocks")) continue;
+      const json& b = e["blocks"];
+      const double n = std::max(1.0, num(b["blocks"]));
+      md << "| " << k << " | " << scene << " | " << fmt(num(b["blocks"]), 0) << " | "
+         << fmt(100 * num(b["rank_deficient"]) / n, 1) << "% | "
+         << fmt(100 * num(b["empty"]) / n, 1) << "% | " << fmt(num(b["condition_median"]), 1)
+         << " | " << fmt(num(b["condition_p95"]), 1) << " | " << fmt(num(b["condition_max"]), 1)
+         << " |\n";
+    }
+}
+
+// The bmfr sections: each entry's stages, frame and floor at a glance (the per-stage tables
+// below have the rest).
+void bmfr_table(std::ostringstream& md, const Results& r) {
+  const char* const stages[] = {"sanitize", "accumulate", "regression", "weighted_sum", "post"};
+  std::ostringstream rows;
+  for (const char* suite : {"gpu", "cpu"})
+    for (const json* e : r.timings(suite, "bmfr")) {
+      rows << "| " << (*e)["label"].get<std::string>() << " | " << size_of(*e) << " | "
+           << (*e)["input"].value("scene", "") << " |";
+      for (const char* name : stages) {
+        double ms = NAN;
+        for (const json& st : (*e)["stages"])
+          if (st["stage"] == name) ms = st["ms"]["median"].get<double>();
+        rows << ' ' << fmt(ms, ms < 10 ? 4 : 1) << " |";
+      }
+      const double m = median_ms(*e);
+      const bool floor = e->contains("floor");
+      rows << " **" << fmt(m, m < 10 ? 4 : 1) << "** | " << fmt(p95_ms(*e), m < 10 ? 4 : 1)
+           << " | " << (floor ? fmt((*e)["floor"]["floor_ms"].get<double>(), 4) : "n/a") << " | "
+           << (floor ? fmt((*e)["floor"]["ratio"].get<double>(), 2) : "n/a") << " |\n";
+    }
+  if (rows.str().empty()) return;
+  md << "\n## BMFR (bmfr sections), median ms per stage and frame\n\nThe sections' SVGF entry "
+        "(its own stages) is the reference of the CPU target, timed in the same sitting.\n\n"
+        "| configuration | size | scene | sanitize | accumulate | regression | weighted sum | "
+        "post | frame | p95 | floor ms | × floor |\n"
+        "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n"
+     << rows.str();
 }
 
 }  // namespace
@@ -417,13 +479,15 @@ std::string summary_markdown(const Results& r, const std::vector<Point>& pts,
 
   kernel_size_table(md, r);
   per_tap_table(md, r);
+  bmfr_table(md, r);
 
   // Quality per scene of the default configurations.
   md << "\n## Quality per fixture scene (mean over frames)\n\n| configuration | scene | frames | "
         "PSNR dB | SSIM | relMSE | FLIP | error change | output change "
         "|\n|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
-  std::vector<std::string> keys = {"noisy input", kDefaultCpu, kDefaultExact, kDefaultFast,
-                                   kWaveletCpu,   kWaveletFast, kJbfCpu,      kJbfAtrousCpu};
+  std::vector<std::string> keys = {"noisy input", kDefaultCpu,   kDefaultExact, kDefaultFast,
+                                   kWaveletCpu,   kWaveletFast,  kJbfCpu,       kJbfAtrousCpu,
+                                   kBmfrCpu,      kBmfrSkipCpu,  kBmfrFast};
   for (const json* e : r.timings("cpu", "baselines")) keys.push_back((*e)["key"]);
   for (const std::string& k : keys)
     for (const auto& [scene, e] : r.quality(k)) {
@@ -434,12 +498,17 @@ std::string summary_markdown(const Results& r, const std::vector<Point>& pts,
          << fmt(num(m["error_change"]), 5) << " | " << fmt(num(m["output_change"]), 5) << " |\n";
     }
 
+  block_table(md, r);
+
   // The cost model every floor above comes from.
   md << "\n## Cost model (bench/stage_cost.cpp), per pixel, default parameters (SVGF: 4 "
         "iterations, feedback tap 1, frames with emission planes; then the other methods' filter "
-        "stages)\n\n| mode | stage | surface pixel: bytes "
-        "read | written | ops | background pixel: bytes read | written | ops | planes |\n"
-        "|---|---|---:|---:|---:|---:|---:|---:|---|\n";
+        "stages; then BMFR's stages at 1920x1080, its regression a row of its blocks (1024 rows, "
+        "the grid sticking out of the image: "
+     << fmt(bmfr_blocks_per_px(1920, 1080) * 1024, 3)
+     << " rows a pixel) and each block's own work and output)\n\n| mode | stage | surface "
+        "pixel: bytes read | written | ops | background pixel: bytes read | written | ops | "
+        "planes |\n|---|---|---:|---:|---:|---:|---:|---:|---|\n";
   const SvgfParams defaults;
   for (Mode mode : {Mode::Exact, Mode::Fast}) {
     for (int si = 0; si < kStageCount; ++si) {
@@ -477,6 +546,17 @@ std::string summary_markdown(const Results& r, const std::vector<Point>& pts,
          << fmt(b.read, 0) << " | " << fmt(b.written, 0) << " | " << fmt(b.ops, 0) << " | "
          << a.planes << " |\n";
     }
+  // BMFR, every stage, at 1080p (the regression's rows and blocks per pixel depend on the size).
+  for (Mode mode : {Mode::Exact, Mode::Fast})
+    for (const char* stage : {kSanitizeStage, bmfr_stage::kAccumulate, bmfr_stage::kRegression,
+                              bmfr_stage::kWeightedSum, bmfr_stage::kPost}) {
+      const BmfrParams p;
+      const StageCost a = *bmfr_stage_cost(mode, p, stage, true, 1.0, 1920, 1080);
+      const StageCost b = *bmfr_stage_cost(mode, p, stage, true, 0.0, 1920, 1080);
+      md << "| " << to_string(mode) << " | bmfr " << stage << " (1920x1080) | " << fmt(a.read, 1)
+         << " | " << fmt(a.written, 1) << " | " << fmt(a.ops, 0) << " | " << fmt(b.read, 1)
+         << " | " << fmt(b.written, 1) << " | " << fmt(b.ops, 0) << " | " << a.planes << " |\n";
+    }
 
   // Per-stage tables.
   md << "\n## Per-stage tables\n\nBytes and operations per pixel come from bench/stage_cost.cpp "
@@ -484,7 +564,7 @@ std::string summary_markdown(const Results& r, const std::vector<Point>& pts,
         "max(bytes / copy bandwidth, ops / FP32 rate) with the measured ceilings; the frame's "
         "floor is the sum over its stages.\n";
   for (const char* s : {"gpu", "cpu"})
-    for (const char* section : {"sizes", "wavelet", "jbf"})
+    for (const char* section : {"sizes", "wavelet", "jbf", "bmfr"})
       for (const json* e : r.timings(s, section)) stage_table(md, *e);
   for (const json* e : r.timings("cpu", "baselines")) {
     md << "\n**" << (*e)["label"].get<std::string>() << "** at " << size_of(*e) << ": median "

@@ -16,6 +16,8 @@
 #include "bench/chart_tables.h"
 #include "bench/results.h"
 #include "bench/runner.h"
+#include "bench/stage_cost.h"
+#include "bench/suites.h"
 #include "bench/summary.h"
 
 using namespace svgf;
@@ -103,6 +105,26 @@ TEST_CASE("SVGF keeps its cost model and floor", "[bench][svgf]") {
   CHECK(e["cost_model"] == "bench/stage_cost.cpp");
   REQUIRE(e.contains("floor"));
   for (const json& s : e["stages"]) CHECK(s.contains("bytes_read_per_px"));
+}
+
+TEST_CASE("a BMFR run is costed in every stage and has a frame floor", "[bench][bmfr]") {
+  RunConfig c = run_config("bmfr");
+  c.denoiser.threads = 2;
+  const json e = time_run(c, fixture(), quick(), Ceilings{10.0, 1e10, "test"});
+  CHECK(e["cost_model"] == "bench/stage_cost.cpp");
+  REQUIRE(e.contains("floor"));
+  double floor_ms = 0;
+  for (const json& s : e["stages"]) {
+    INFO(s["stage"]);
+    REQUIRE(s.contains("floor"));
+    floor_ms += s["floor"]["floor_ms"].get<double>();
+  }
+  CHECK(e["floor"]["floor_ms"].get<double>() == Approx(floor_ms));
+  // The regression's rows: 25 blocks of 1024 rows over 128x128 pixels (about 1.56 a pixel),
+  // 10 planes a row.
+  const double rows = bmfr_blocks_per_px(128, 128) * 1024;
+  CHECK(rows > 1.4);
+  CHECK(stage_of(e, "regression")["bytes_read_per_px"].get<double>() == Approx(rows * 40));
 }
 
 TEST_CASE("keys are unique per configuration and name the kernel size", "[bench]") {
@@ -195,6 +217,64 @@ TEST_CASE("every method and variant has its chart series", "[bench]") {
     CHECK(std::find(std::begin(kSeries), std::end(kSeries), s) != std::end(kSeries));
   CHECK(jbf_config(Backend::Cpu, Mode::Exact, 0, 0).key() == kJbfCpu);
   CHECK(jbf_config(Backend::Cpu, Mode::Exact, 4, 0).key() == kJbfAtrousCpu);
+  CHECK(series("bmfr", "cpu", "exact") == "cpu_bmfr");
+  for (const std::string& s : {series("bmfr", "cuda", "exact"), series("bmfr", "cuda", "fast")})
+    CHECK(std::find(std::begin(kSeries), std::end(kSeries), s) != std::end(kSeries));
+  CHECK(bmfr_config(Backend::Cpu, Mode::Exact, BmfrRankStrategy::Noise, 0).key() == kBmfrCpu);
+  CHECK(bmfr_config(Backend::Cpu, Mode::Exact, BmfrRankStrategy::Skip, 0).key() == kBmfrSkipCpu);
+  CHECK(bmfr_config(Backend::Cuda, Mode::Fast, BmfrRankStrategy::Noise, 0).key() == kBmfrFast);
+  for (const char* suite : {"cpu", "gpu"}) {
+    const std::vector<std::string> sections = suite_sections(suite);
+    CHECK(std::find(sections.begin(), sections.end(), "bmfr") != sections.end());
+  }
+}
+
+TEST_CASE("BMFR entries read back into the chart, the BMFR and block tables of the summary",
+          "[bench][bmfr]") {
+  const FrameSet f = fixture();
+  const RunConfig c = bmfr_config(Backend::Cpu, Mode::Exact, BmfrRankStrategy::Skip, 2);
+  json chart = time_run(c, f, quick(), Ceilings{10.0, 1e10, "test"});
+  chart["group"] = "bmfr";
+  // The same configuration on the full-coverage scene, and SVGF's reference there: entries of
+  // the section, not chart points.
+  json room = chart;
+  room["input"]["scene"] = "camera-pan";
+  json svgf = time_run(svgf_config(Backend::Cpu, Mode::Exact, 4, 1, 2), f, quick(), Ceilings{});
+  svgf["group"] = "bmfr";
+  svgf["input"]["scene"] = "camera-pan";
+  json quality = quality_run(c, f);
+  quality["group"] = "quality";
+  const json doc = {{"suite", "cpu"},
+                    {"chart_size", size_of(chart)},
+                    {"chart_scene", "cornell-moving"},
+                    {"host", {{"cpu_model", "test"}, {"hardware_threads", 2}}},
+                    {"ceilings", json::object()},
+                    {"sections", json::object()},
+                    {"timings", {chart, room, svgf}},
+                    {"quality", {quality}}};
+  const fs::path dir = fs::temp_directory_path() / "svgf_bench_bmfr_test";
+  fs::create_directories(dir);
+  std::ofstream(dir / "cpu.json") << doc.dump();
+  const Results r = load_results(dir.string());
+  fs::remove_all(dir);
+
+  const std::vector<Point> pts = chart_points(r);
+  REQUIRE(pts.size() == 1);
+  CHECK(pts[0].series == "cpu_bmfr");
+  CHECK(pts[0].key == kBmfrSkipCpu);
+  CHECK(std::isfinite(pts[0].q.psnr));
+
+  const std::string md = summary_markdown(r, pts, {});
+  CHECK_THAT(md, Catch::Contains("## BMFR (bmfr sections)"));
+  CHECK_THAT(md,
+             Catch::Contains("| bmfr cpu exact skip t2 | " + size_of(chart) + " | camera-pan |"));
+  CHECK_THAT(md, Catch::Contains("| svgf cpu exact it4 tap1 t2 | " + size_of(chart) +
+                                 " | camera-pan |"));
+  // The block diagnostics of the fixture: 3 frames of 25 blocks.
+  CHECK_THAT(md, Catch::Contains("## Blocks of the block-fitting methods"));
+  CHECK_THAT(md, Catch::Contains("| bmfr cpu exact skip | cornell-moving | 75 |"));
+  CHECK_THAT(md, Catch::Contains("| exact | bmfr regression (1920x1080) |"));
+  CHECK_THAT(md, Catch::Contains("**bmfr cpu exact skip t2**"));
 }
 
 TEST_CASE("JBF and kernel-size study entries read back into the charts, the study and the summary",

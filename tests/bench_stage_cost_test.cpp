@@ -1,9 +1,10 @@
 // bench/stage_cost.cpp's plane counts checked against the kernels: each exact-mode SVGF stage
-// functor, the JBF's pass and the wavelet's a-trous pass runs on a small steady-state frame (a
-// surface everywhere, history old enough, the four bilinear reprojection taps passing) whose
-// every plane is its own buffer. A plane is read when changing it changes the output at a probe
-// pixel, and written when the kernel overwrites the canary there. Operation counts are not
-// checked (they stay hand-counted), nor fast mode (its flavor exists only under nvcc).
+// functor, the JBF's pass, the wavelet's a-trous pass and BMFR's stages runs on a small
+// steady-state frame (a surface everywhere, history old enough, the four bilinear reprojection
+// taps passing) whose every plane is its own buffer. A plane is read when changing it changes the
+// output at a probe pixel, and written when the kernel overwrites the canary there (BMFR's
+// per-block values: counted a value at a time). Operation counts are not checked (they stay
+// hand-counted), nor fast mode (its arithmetic exists only under nvcc).
 #include <catch2/catch.hpp>
 #include <algorithm>
 #include <cmath>
@@ -18,6 +19,12 @@
 #include "bench/stage_cost.h"
 #include "core/copy.h"
 #include "core/normal_weight.h"
+#include "kernels_cpu/cpu_block.h"
+#include "methods/bmfr/accumulate.h"
+#include "methods/bmfr/denoiser.h"
+#include "methods/bmfr/post.h"
+#include "methods/bmfr/regression.h"
+#include "methods/bmfr/weighted_sum.h"
 #include "methods/jbf/filter.h"
 #include "methods/svgf/atrous.h"
 #include "methods/svgf/demodulate.h"
@@ -103,6 +110,14 @@ class Rig {
       if (changed) names.push_back(p.name);
     }
     return names;
+  }
+
+  // How many of the outputs' values at `probes` the kernel stores into.
+  template <class Kernel>
+  int stores(const Kernel& k, const std::vector<Pixel>& probes) {
+    int n = 0;
+    for (uint32_t b : run(k, probes)) n += b != kCanary;
+    return n;
   }
 
   // The outputs the kernel stores into at `probes`.
@@ -426,11 +441,253 @@ TEST_CASE("stage cost: the filters' tap counts follow their footprints", "[bench
   DenoiserConfig d;
   d.method = Method::JbfAtrous;
   d.jbf.levels = 4;
-  CHECK(bench::method_stage_cost(d, "atrous", false, 1.0).has_value());
-  CHECK_FALSE(bench::method_stage_cost(d, "temporal", false, 1.0).has_value());
+  CHECK(bench::method_stage_cost(d, "atrous", false, 1.0, kW, kH).has_value());
+  CHECK_FALSE(bench::method_stage_cost(d, "temporal", false, 1.0, kW, kH).has_value());
   CHECK_FALSE(bench::frame_is_costed(Method::JbfAtrous));
   d.method = Method::Jbf;
-  CHECK(bench::method_stage_cost(d, "filter", false, 1.0)->taps == 33 * 33 - 1);
+  CHECK(bench::method_stage_cost(d, "filter", false, 1.0, kW, kH)->taps == 33 * 33 - 1);
   d.method = Method::Gaussian;
-  CHECK_FALSE(bench::method_stage_cost(d, "blur_x", false, 1.0).has_value());
+  CHECK_FALSE(bench::method_stage_cost(d, "blur_x", false, 1.0, kW, kH).has_value());
+}
+
+// --- BMFR ---------------------------------------------------------------------------------
+
+namespace {
+
+// Positions on a gently tilted plane (|p - p'|^2 well under the 0.01 limit between neighbours'
+// histories), normals near +z.
+float bmfr_position(int x, int y, int c) {
+  const float v[3] = {0.02f * x, 0.02f * y, 1.f + 0.01f * noise(x, y, 4)};
+  return v[c];
+}
+ConstRgbView positions(Rig& rig, const std::string& name, float jitter) {
+  auto plane = [&](int c) {
+    return rig.input(name + "." + "xyz"[c], [c, jitter](int x, int y) {
+      return bmfr_position(x, y, c) + jitter * noise(x, y, 5 + c);
+    });
+  };
+  return {plane(0), plane(1), plane(2)};
+}
+
+// The model's count of BMFR stage `name` on the rig's frame size, in planes of 4 bytes.
+bench::StageCost bmfr_model(const std::string& name, bool emission, bool surface,
+                            BmfrRankStrategy strategy = BmfrRankStrategy::Noise) {
+  BmfrParams p;
+  p.rank_strategy = strategy;
+  return *bench::bmfr_stage_cost(Mode::Exact, p, name, emission, surface ? 1.0 : 0.0, kW, kH);
+}
+Planes in_planes(const bench::StageCost& c) { return {c.read / 4.0, c.written / 4.0}; }
+
+}  // namespace
+
+TEST_CASE("stage cost: BMFR's accumulate planes are the kernel's", "[bench][stage_cost][bmfr]") {
+  for (bool emission : {false, true}) {
+    Rig rig;
+    BmfrAccumulate k;
+    k.guides = guides(rig, "guides", false);
+    k.position = positions(rig, "position", 0.f);
+    k.color = rig.input_rgb("color", 0.5f, 2.f);
+    k.albedo = rig.input_rgb("albedo", 0.2f, 0.9f);
+    k.emission = emission ? rig.input_rgb("emission", 0.f, 0.2f) : ConstRgbView();
+    // The previous frame's samples at the taps, close to this frame's surface: all four taps
+    // are accepted.
+    k.prev_position = positions(rig, "prev_position", 0.01f);
+    k.prev_normal = {rig.input("prev_normal.x", 0.f, 0.05f), rig.input("prev_normal.y", 0.f, 0.05f),
+                     rig.input("prev_normal.z", 0.99f, 1.f)};
+    k.prev_noisy = rig.input_rgb("prev_noisy", 0.2f, 2.f);
+    k.prev_length = rig.input("prev_length", [](int, int) { return 10.f; });
+    k.position_out = rig.output_rgb("position_out");
+    k.normal_out = rig.output_rgb("normal_out");
+    k.noisy = rig.output_rgb("noisy");
+    k.length = rig.output("length");
+    k.reprojection = {rig.output("prev_x"), rig.output("prev_y"), rig.output("accept")};
+    k.has_history = true;
+    for (bool surface : {true, false})
+      require_planes(rig, k, std::string("bmfr accumulate") + (emission ? ", emission" : ""),
+                     surface, in_planes(bmfr_model(bmfr_stage::kAccumulate, emission, surface)));
+  }
+}
+
+TEST_CASE("stage cost: BMFR's post-accumulation planes are the kernel's",
+          "[bench][stage_cost][bmfr]") {
+  for (bool emission : {false, true}) {
+    Rig rig;
+    BmfrPostAccumulate k;
+    k.width = kW;
+    k.height = kH;
+    k.filtered = rig.input_rgb("filtered", 0.2f, 2.f);
+    // All four taps accepted, except at the background probe (no history there).
+    float* prev_x = rig.input("prev_x", [](int x, int) { return x + 0.35f; });
+    float* prev_y = rig.input("prev_y", [](int, int y) { return y - 0.45f; });
+    float* accept =
+        rig.input("accept", [](int x, int y) { return is_background(x, y) ? 0.f : 15.f; });
+    k.reprojection = {prev_x, prev_y, accept};
+    // Short histories: 1 / n is above the post blend's floor, so the length shows.
+    k.length = rig.input("length", 4.f, 6.f);
+    k.prev_accumulated = rig.input_rgb("prev_accumulated", 0.2f, 2.f);
+    k.accumulated = rig.output_rgb("accumulated");
+    k.albedo = rig.input_rgb("albedo", 0.2f, 0.9f);
+    k.emission = emission ? rig.input_rgb("emission", 0.f, 0.2f) : ConstRgbView();
+    k.output = rig.output_rgb("output");
+    k.has_history = true;
+    for (bool surface : {true, false})
+      require_planes(rig, k, std::string("bmfr post") + (emission ? ", emission" : ""), surface,
+                     in_planes(bmfr_model(bmfr_stage::kPost, emission, surface)));
+  }
+}
+
+TEST_CASE("stage cost: BMFR's weighted sum reads its pixel's planes and its block's values",
+          "[bench][stage_cost][bmfr]") {
+  Rig rig;
+  const BmfrGrid grid = BmfrGrid::of(kW, kH, 0);
+  // Per block: positive weights (so the clamp at 0 hides nothing), ranges [-1, 2] (scaled by
+  // their width 3), rank 10.
+  float* blocks = rig.input("blocks", [](int x, int y) {
+    const int k = (y * kW + x) % BmfrBlockData::kFloats;
+    if (k < BmfrBlockData::kWeights) return 0.1f + noise(x, y, 6);
+    if (k < BmfrBlockData::kWeights + BmfrBlockData::kRanges) return k % 2 ? 2.f : -1.f;
+    return k == BmfrBlockData::kFloats - 2 ? 10.f : 50.f;  // rank, condition
+  });
+  REQUIRE(grid.blocks() * BmfrBlockData::kFloats <= kW * kH);
+  BmfrWeightedSum<ExactArith> k{grid,
+                                guides(rig, "guides", false),
+                                positions(rig, "position", 0.f),
+                                rig.input_rgb("noisy", 0.2f, 2.f),
+                                BmfrBlockData{blocks},
+                                rig.output_rgb("filtered")};
+  for (bool surface : {true, false}) {
+    const std::vector<Pixel>& probes = surface ? kSurface : kBackground;
+    // The values of its block the first probe reads, one value at a time (zeroed, negated or
+    // scaled: the rank shows only when zeroed).
+    const Pixel p = probes.front();
+    const int j = p.y * kW + p.x;
+    const auto output = [&] {
+      k(p.x, p.y);
+      return std::vector<float>{k.filtered.r[j], k.filtered.g[j], k.filtered.b[j]};
+    };
+    const int b = grid.block_of(p.x, p.y);
+    int block_values = 0;
+    for (int v = 0; v < BmfrBlockData::kFloats; ++v) {
+      float& value = blocks[b * BmfrBlockData::kFloats + v];
+      const float saved = value;
+      const std::vector<float> before = output();
+      bool changed = false;
+      for (float changed_to : {saved * 1.5f + 0.25f, 0.f, -saved}) {
+        value = changed_to;
+        changed = changed || output() != before;
+      }
+      value = saved;
+      block_values += changed;
+    }
+    // The pixel's own planes (the block values' plane left out).
+    std::vector<std::string> read = rig.read(k, probes);
+    read.erase(std::remove(read.begin(), read.end(), "blocks"), read.end());
+    const std::vector<std::string> written = rig.written(k, probes);
+    std::string r;
+    for (const std::string& n : read) r += n + " ";
+    INFO("bmfr weighted sum, " << (surface ? "surface" : "background") << ": read " << r << "and "
+                               << block_values << " values of its block");
+    // A block's values are read once for all its pixels: the model counts them times the
+    // blocks per pixel.
+    const bench::StageCost m = bmfr_model(bmfr_stage::kWeightedSum, false, surface);
+    CHECK(m.read / 4.0 ==
+          Approx(read.size() + block_values * bench::bmfr_blocks_per_px(kW, kH)));
+    CHECK(static_cast<double>(written.size()) == m.written / 4.0);
+  }
+}
+
+namespace {
+
+// BMFR's regression over the first `blocks` blocks of a frame's grid, run by the CPU's block
+// context once per probe sweep (at the first probe): the Rig sees the block values it stores.
+struct RegressionSweep {
+  const BmfrFit<ExactArith>& fit;
+  int blocks;
+  Pixel first;
+  void operator()(int x, int y) const {
+    if (x != first.x || y != first.y) return;
+    std::vector<float> scratch(BmfrFit<ExactArith>::kScratchFloats);
+    for (int b = 0; b < blocks; ++b) fit(cpu::CpuBlock(scratch.data()), b);
+  }
+};
+
+// The probes over the first `values` values of a per-block plane.
+std::vector<Pixel> value_probes(int values) {
+  std::vector<Pixel> v;
+  for (int i = 0; i < values; ++i) v.push_back({i % kW, i / kW});
+  return v;
+}
+
+}  // namespace
+
+TEST_CASE("stage cost: BMFR's regression reads a row's planes and stores a block's values",
+          "[bench][stage_cost][bmfr]") {
+  for (BmfrRankStrategy strategy : {BmfrRankStrategy::Noise, BmfrRankStrategy::Skip}) {
+    CAPTURE(to_string(strategy));
+    Rig rig;
+    BmfrFit<ExactArith> fit;
+    fit.grid = BmfrGrid::of(kW, kH, 0);
+    fit.guides = guides(rig, "guides", false);
+    fit.position = positions(rig, "position", 0.f);
+    fit.noisy = rig.input_rgb("noisy", 0.2f, 2.f);
+    fit.length = rig.input("length", [](int, int) { return 10.f; });
+    fit.out = BmfrBlockData{rig.output("blocks")};
+    fit.strategy = strategy;
+    REQUIRE(fit.grid.blocks() * BmfrBlockData::kFloats <= kW * kH);
+    const bench::StageCost m =
+        bmfr_model(bmfr_stage::kRegression, false, true, strategy);
+    const double blocks_per_px = bench::bmfr_blocks_per_px(kW, kH);
+
+    // One block's values depend on the planes of its rows.
+    const std::vector<Pixel> first_block = value_probes(BmfrBlockData::kFloats);
+    const std::vector<std::string> read =
+        rig.read(RegressionSweep{fit, 1, first_block.front()}, first_block);
+    std::string r;
+    for (const std::string& n : read) r += n + " ";
+    INFO("bmfr regression: read " << r);
+    CHECK(static_cast<double>(read.size()) ==
+          Approx(m.read / 4.0 / (blocks_per_px * block::kRows)));
+
+    // Every block stores all its values (weights of skipped columns too).
+    const int blocks = fit.grid.blocks();
+    const std::vector<Pixel> all = value_probes(blocks * BmfrBlockData::kFloats);
+    const int stored = rig.stores(RegressionSweep{fit, blocks, all.front()}, all);
+    CHECK(static_cast<double>(stored) / blocks == Approx(m.written / 4.0 / blocks_per_px));
+  }
+}
+
+TEST_CASE("stage cost: BMFR is counted in every stage, its regression a row of its blocks",
+          "[bench][stage_cost][bmfr]") {
+  DenoiserConfig d;
+  d.method = Method::Bmfr;
+  CHECK(bench::frame_is_costed(Method::Bmfr));
+  for (const char* stage : {kSanitizeStage, bmfr_stage::kAccumulate, bmfr_stage::kRegression,
+                            bmfr_stage::kWeightedSum, bmfr_stage::kPost, kUploadStage})
+    CHECK(bench::method_stage_cost(d, stage, false, 1.0, 1920, 1080).has_value());
+  CHECK_FALSE(bench::method_stage_cost(d, "atrous", false, 1.0, 1920, 1080).has_value());
+  // The grid sticks out of the image: at 1080p 61 x 34.75 blocks (the mean over the offsets) of
+  // 1024 rows, 4.7% more rows than pixels.
+  CHECK(bench::bmfr_blocks_per_px(1920, 1080) * block::kRows ==
+        Approx(61 * 34.75 * 1024 / (1920.0 * 1080)));
+  // Sanitize reads the world positions besides SVGF's planes.
+  CHECK(bench::method_stage_cost(d, kSanitizeStage, false, 1.0, 1920, 1080)->read ==
+        bench::stage_cost(Mode::Exact, Stage::Sanitize, SvgfParams(), false, 1.0).read + 12);
+  // Fast mode's FMA make the regression and the weighted sum cheaper, the noise costs skip
+  // nothing, and background rows skip the scaling.
+  auto ops = [&](Mode mode, BmfrRankStrategy s, const char* stage, double surface) {
+    d.mode = mode;
+    d.bmfr.rank_strategy = s;
+    return bench::method_stage_cost(d, stage, false, surface, 1920, 1080)->ops;
+  };
+  const auto noise = BmfrRankStrategy::Noise, skip = BmfrRankStrategy::Skip;
+  CHECK(ops(Mode::Fast, noise, bmfr_stage::kRegression, 1) <
+        ops(Mode::Exact, noise, bmfr_stage::kRegression, 1));
+  CHECK(ops(Mode::Fast, noise, bmfr_stage::kWeightedSum, 1) <
+        ops(Mode::Exact, noise, bmfr_stage::kWeightedSum, 1));
+  CHECK(ops(Mode::Exact, skip, bmfr_stage::kRegression, 1) <
+        ops(Mode::Exact, noise, bmfr_stage::kRegression, 1));
+  CHECK(ops(Mode::Exact, noise, bmfr_stage::kRegression, 0) <
+        ops(Mode::Exact, noise, bmfr_stage::kRegression, 1));
+  CHECK(ops(Mode::Fast, noise, bmfr_stage::kAccumulate, 1) ==
+        ops(Mode::Exact, noise, bmfr_stage::kAccumulate, 1));
 }

@@ -123,6 +123,73 @@ TEST_CASE("issue 10's targets: JBF a-trous against SVGF's iterations, stage rati
     CHECK(t.verdict == Verdict::NotMeasured);
 }
 
+TEST_CASE("issue 11's targets: BMFR fast at 1080p, exact against its floor, the CPU against SVGF",
+          "[bench][targets][bmfr]") {
+  const json targets = load_targets(default_targets_path());
+  auto on = [](json e, const std::string& scene) {
+    e["input"]["scene"] = scene;
+    return e;
+  };
+  json gpu = {{"suite", "gpu"}, {"timings", json::array()}};
+  json& g = gpu["timings"];
+  for (const std::string mode : {"exact", "fast"}) {
+    const std::string key = "bmfr cuda " + mode + " noise";
+    const json config = {{"method", "bmfr"}, {"mode", mode}};
+    // At the chart size on the default scene (not the targets'), and at 1080p on camera-pan.
+    g.push_back(entry("bmfr", key, config, 1280, 720, 0.3));
+    json e = on(entry("bmfr", key, config, 1920, 1080, mode == "fast" ? 0.78 : 0.79), "camera-pan");
+    e["frame_ms"]["filter"]["p95"] = 0.8;
+    e["floor"] = {{"floor_ms", 0.3}, {"ratio", mode == "fast" ? 2.6 : 2.63}, {"bytes_ms", 0.28},
+                  {"ops_ms", 0.08}};
+    g.push_back(e);
+  }
+  g.push_back(on(entry("bmfr", "bmfr cuda exact skip", {{"method", "bmfr"}, {"mode", "exact"}},
+                       1920, 1080, 0.57),
+                 "camera-pan"));
+  json cpu = {{"suite", "cpu"}, {"timings", json::array()}};
+  json& c = cpu["timings"];
+  for (int threads : {2, 16}) {
+    const json config = {{"method", "bmfr"}, {"mode", "exact"}, {"threads", threads}};
+    c.push_back(on(entry("bmfr", "bmfr cpu exact noise", config, 1280, 720, 300.0 / (threads / 2)),
+                   "camera-pan"));
+  }
+  c.push_back(on(entry("bmfr", "svgf cpu exact it4 tap1",
+                       {{"method", "svgf"}, {"mode", "exact"}, {"threads", 2}}, 1280, 720, 250),
+                 "camera-pan"));
+  // The chart size's entry on the default scene must not be taken for camera-pan's.
+  c.push_back(entry("bmfr", "bmfr cpu exact noise",
+                    {{"method", "bmfr"}, {"mode", "exact"}, {"threads", 2}}, 1280, 720, 1000));
+  Results r;
+  r.suites["gpu"] = gpu;
+  r.suites["cpu"] = cpu;
+  const std::vector<TargetResult> all = evaluate_targets(targets, r);
+
+  const auto fast = results_of(all, "gpu-fast-1080p-bmfr");
+  REQUIRE(fast.size() == 1);
+  CHECK(fast[0].measured.value == 0.78);
+  CHECK(fast[0].verdict == Verdict::Met);
+  REQUIRE(fast[0].context.size() == 3);
+  CHECK(fast[0].context[0].value == 0.8);  // p95
+  CHECK(fast[0].context[1].value == 0.3);  // floor
+
+  const auto exact = results_of(all, "gpu-exact-1080p-bmfr-floor");
+  REQUIRE(exact.size() == 1);
+  CHECK(exact[0].measured.value == 2.63);
+  CHECK(exact[0].verdict == Verdict::Missed);
+  REQUIRE(exact[0].context.size() == 5);
+  CHECK(exact[0].context[0].value == 0.79);
+
+  const auto ratio = results_of(all, "cpu-720p-bmfr-vs-svgf");
+  REQUIRE(ratio.size() == 1);
+  CHECK(ratio[0].measured.value == Approx(300.0 / 250));
+  CHECK(ratio[0].verdict == Verdict::Met);
+
+  const std::vector<TargetResult> none = evaluate_targets(targets, Results{});
+  for (const char* id :
+       {"gpu-fast-1080p-bmfr", "gpu-exact-1080p-bmfr-floor", "cpu-720p-bmfr-vs-svgf"})
+    for (const TargetResult& t : results_of(none, id)) CHECK(t.verdict == Verdict::NotMeasured);
+}
+
 TEST_CASE("a target's row ratio and stage are checked when the file loads", "[bench][targets]") {
   const fs::path file = fs::temp_directory_path() / "svgf_bench_targets_test.json";
   auto load_with = [&](const json& extra) {

@@ -26,6 +26,9 @@ set style line 12 lc rgb "#b5cf6b" pt 8 ps 1.3
 set style line 13 lc rgb "#e7969c" pt 12 ps 1.5
 set style line 14 lc rgb "#393b79" pt 10 ps 1.5
 set style line 15 lc rgb "#843c39" pt 14 ps 1.5
+set style line 16 lc rgb "#000000" pt 5 ps 1.6
+set style line 17 lc rgb "#636363" pt 7 ps 1.6
+set style line 18 lc rgb "#a55194" pt 9 ps 1.8
 front(plat) = data . "/pareto_" . metric . "_" . plat . ".dat"
 f(s) = data . "/points_" . s . ".dat"
 # Series without points (say, no GPU results yet) are skipped with a gnuplot warning.
@@ -59,4 +62,10 @@ plot \
   f("cuda_exact_jbf") using 1:col ls 14 title "JBF CUDA exact", \
   f("cuda_exact_jbf") using 1:col:6 with labels offset 0.6,-0.7 left font ",8" tc rgb "#393b79" notitle, \
   f("cuda_fast_jbf") using 1:col ls 15 title "JBF CUDA fast", \
-  f("cuda_fast_jbf") using 1:col:6 with labels offset -0.6,0.7 right font ",8" tc rgb "#843c39" notitle
+  f("cuda_fast_jbf") using 1:col:6 with labels offset -0.6,0.7 right font ",8" tc rgb "#843c39" notitle, \
+  f("cpu_bmfr") using 1:col ls 16 title "BMFR CPU exact", \
+  f("cpu_bmfr") using 1:col:6 with labels offset 0.6,0.7 left font ",8" tc rgb "#000000" notitle, \
+  f("cuda_exact_bmfr") using 1:col ls 17 title "BMFR CUDA exact", \
+  f("cuda_exact_bmfr") using 1:col:6 with labels offset 0.6,-0.7 left font ",8" tc rgb "#636363" notitle, \
+  f("cuda_fast_bmfr") using 1:col ls 18 title "BMFR CUDA fast", \
+  f("cuda_fast_bmfr") using 1:col:6 with labels offset -0.6,0.7 right font ",8" tc rgb "#a55194" notitle
