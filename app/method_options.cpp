@@ -35,7 +35,9 @@ const char* const kMethodParamUsage =
     "  --bmfr-pre-alpha A        bmfr: noisy-color temporal blend floor (default 0.2)\n"
     "  --bmfr-post-alpha A       bmfr: output temporal blend floor (default 0.1)\n"
     "  --bmfr-position-limit D2  bmfr: squared world distance a history tap may lie at (default 0.01)\n"
-    "  --bmfr-normal-limit D2    bmfr: squared normal difference a history tap may have (default 1)\n";
+    "  --bmfr-normal-limit D2    bmfr: squared normal difference a history tap may have (default 1)\n"
+    "  --bmfr-taa on|off         bmfr: temporal anti-aliasing of the output (default off)\n"
+    "  --bmfr-taa-alpha A        bmfr: its blend toward the new frame (default 0.2)\n";
 
 namespace {
 
@@ -69,7 +71,9 @@ const std::map<std::string, std::vector<std::string>>& readers() {
       {"bmfr-pre-alpha", {"bmfr"}},
       {"bmfr-post-alpha", {"bmfr"}},
       {"bmfr-position-limit", {"bmfr"}},
-      {"bmfr-normal-limit", {"bmfr"}}};
+      {"bmfr-normal-limit", {"bmfr"}},
+      {"bmfr-taa", {"bmfr"}},
+      {"bmfr-taa-alpha", {"bmfr"}}};
   return r;
 }
 
@@ -118,6 +122,11 @@ void read_method_params(const Options& o, DenoiserConfig& c) {
   b.post_alpha = o.get_float("bmfr-post-alpha", b.post_alpha);
   b.position_limit_sq = o.get_float("bmfr-position-limit", b.position_limit_sq);
   b.normal_limit_sq = o.get_float("bmfr-normal-limit", b.normal_limit_sq);
+  b.taa_alpha = o.get_float("bmfr-taa-alpha", b.taa_alpha);
+  const std::string taa = o.get("bmfr-taa", b.taa ? "on" : "off");
+  if (taa != "on" && taa != "off")
+    throw UsageError("--bmfr-taa must be on or off, got '" + taa + "'");
+  b.taa = taa == "on";
   try {
     b.rank_strategy = parse_bmfr_rank_strategy(o.get("bmfr-rank", to_string(b.rank_strategy)));
     b.validate();

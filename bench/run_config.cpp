@@ -68,6 +68,7 @@ std::string params_key(const DenoiserConfig& d) {
       unless_default("a2", p.post_alpha, def.post_alpha);
       unless_default("pl", p.position_limit_sq, def.position_limit_sq);
       unless_default("nl", p.normal_limit_sq, def.normal_limit_sq);
+      if (p.taa) s << " taa" << p.taa_alpha;
       break;
     }
   }
@@ -104,7 +105,8 @@ json params_json(const DenoiserConfig& d) {
       return {{"rank_strategy", to_string(p.rank_strategy)}, {"noise_amount", p.noise_amount},
               {"skip_threshold", p.skip_threshold},          {"pre_alpha", p.pre_alpha},
               {"post_alpha", p.post_alpha},                  {"position_limit_sq", p.position_limit_sq},
-              {"normal_limit_sq", p.normal_limit_sq}};
+              {"normal_limit_sq", p.normal_limit_sq},        {"taa", p.taa},
+              {"taa_alpha", p.taa_alpha}};
     }
   }
   return json::object();

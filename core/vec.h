@@ -39,6 +39,12 @@ SVGF_HD float min_f(float a, float b) { return a < b ? a : b; }
 SVGF_HD float max_f(float a, float b) { return a > b ? a : b; }
 SVGF_HD float abs_f(float a) { return a < 0.f ? -a : a; }
 SVGF_HD Vec3 max_v(Vec3 a, float s) { return make_vec3(max_f(a.x, s), max_f(a.y, s), max_f(a.z, s)); }
+SVGF_HD Vec3 min_v(Vec3 a, Vec3 b) {
+  return make_vec3(min_f(a.x, b.x), min_f(a.y, b.y), min_f(a.z, b.z));
+}
+SVGF_HD Vec3 max_v(Vec3 a, Vec3 b) {
+  return make_vec3(max_f(a.x, b.x), max_f(a.y, b.y), max_f(a.z, b.z));
+}
 
 // floor for |x| < 2^31 through truncation, exact like floorf. Unlike floorf it vectorizes under
 // GCC's default -ftrapping-math (which keeps libm's floorf a call) and needs no libm on device.

@@ -193,10 +193,11 @@ TEST_CASE("svgf denoise --method bmfr: its flags reach the filter, bad values na
   const fs::path in = write_synthetic(scratch("bmfr_in"), 3), out = scratch("bmfr_out");
   REQUIRE(app::denoise_command({in.string(), out.string(), "--backend", "cpu", "--method",
                                 "bmfr", "--bmfr-rank", "skip", "--bmfr-post-alpha", "0.2",
-                                "--no-preview"}) == 0);
+                                "--bmfr-taa", "on", "--no-preview"}) == 0);
   std::ifstream f(out / "report.json");
   const auto report = nlohmann::json::parse(f);
-  REQUIRE(report["denoiser"].get<std::string>().rfind("bmfr (skip) cpu", 0) == 0);
+  REQUIRE(report["denoiser"].get<std::string>().rfind("bmfr (skip, taa) cpu", 0) == 0);
+  REQUIRE(report["frames"][1]["stage_ms"].contains("taa"));
   REQUIRE(report["mean_psnr_denoised_db"].get<double>() >
           report["mean_psnr_noisy_db"].get<double>() + 5);
   // Every block of the synthetic scene has samples: nothing fell back, in each frame and in all.
@@ -206,7 +207,8 @@ TEST_CASE("svgf denoise --method bmfr: its flags reach the filter, bad values na
       {"--bmfr-rank", "qr"},          {"--bmfr-noise", "-1"},
       {"--bmfr-skip-threshold", "1"}, {"--bmfr-pre-alpha", "0"},
       {"--bmfr-post-alpha", "1.5"},   {"--bmfr-position-limit", "0"},
-      {"--bmfr-normal-limit", "nan"}};
+      {"--bmfr-normal-limit", "nan"}, {"--bmfr-taa", "yes"},
+      {"--bmfr-taa-alpha", "0"}};
   for (const auto& [flag, value] : bad)
     REQUIRE_THROWS_WITH(app::denoise_command({in.string(), out.string(), "--backend", "cpu",
                                               "--method", "bmfr", flag, value}),

@@ -478,6 +478,36 @@ void empty_blocks_fall_back_and_are_counted(const TestDevice& d) {
   REQUIRE(clean->last_report().fallback_pixels == 0);
 }
 
+// With TAA the frame's output is the TAA stage's: the first frame (and the first after a reset)
+// passes through it, so it is the output without TAA bit for bit; later frames differ from it
+// and stay finite, and the post-accumulation history (accumulated) is TAA's input, not its
+// output, so it stays the one without TAA.
+void taa_is_the_last_stage(const TestDevice& d) {
+  test::SyntheticScene scene;
+  BmfrParams with;
+  with.taa = true;
+  auto plain = bmfr_on(d, BmfrParams()), taa = bmfr_on(d, with);
+  REQUIRE(taa->stages().back() == "taa");
+  for (int k = 0; k < 5; ++k) {
+    if (k == 3) {
+      plain->reset();
+      taa->reset();
+    }
+    const Frame f = scene.frame(k);
+    Image a, b;
+    plain->denoise(f, a);
+    taa->denoise(f, b);
+    INFO("frame " << k);
+    for (float v : b.data()) REQUIRE(std::isfinite(v));
+    test::require_identical(plain->read_buffer(bmfr_buffer::kAccumulated),
+                            taa->read_buffer(bmfr_buffer::kAccumulated), "accumulated");
+    if (k == 0 || k == 3)
+      test::require_identical(a, b, "the first frame of a history passes through TAA");
+    else
+      REQUIRE(test::max_relative_difference(a, b, 1e-3) > 1e-4);
+  }
+}
+
 }  // namespace
 
 SVGF_DEVICE_TEST("bmfr: block sums, minima and maxima follow the fixed tree", "[bmfr]",
@@ -492,6 +522,8 @@ SVGF_DEVICE_TEST("bmfr: a block whose color its features explain is reproduced",
                  explained_block_reproduced)
 SVGF_DEVICE_TEST("bmfr: flat walls (rank-deficient blocks) give finite output", "[bmfr]",
                  flat_walls_stay_finite)
+SVGF_DEVICE_TEST("bmfr: TAA (--bmfr-taa) is the last stage; the first frame passes through",
+                 "[bmfr][taa]", taa_is_the_last_stage)
 SVGF_DEVICE_TEST("bmfr: blocks with nothing to fit keep the accumulated color and are counted",
                  "[bmfr]", empty_blocks_fall_back_and_are_counted)
 
@@ -533,6 +565,9 @@ TEST_CASE("bmfr: same bits on 1 and 2 threads; stages, defaults and errors", "[b
   REQUIRE_THROWS_WITH(bad([](BmfrParams& q) { q.normal_limit_sq = -1.f; }), Catch::Contains("--bmfr-normal-limit"));
   REQUIRE_THROWS_WITH(bad([](BmfrParams& q) { q.noise_amount = -0.1f; }), Catch::Contains("--bmfr-noise"));
   REQUIRE_THROWS_WITH(bad([](BmfrParams& q) { q.skip_threshold = 1.f; }), Catch::Contains("--bmfr-skip-threshold"));
+  REQUIRE_THROWS_WITH(bad([](BmfrParams& q) { q.taa_alpha = 0.f; }), Catch::Contains("--bmfr-taa-alpha"));
+  REQUIRE(p.taa == false);
+  REQUIRE(p.taa_alpha == 0.2f);  // TAA_BLEND_ALPHA
   Frame no_position = scene.frame(0);
   no_position.position = Image();
   Image out;

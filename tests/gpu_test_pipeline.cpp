@@ -300,13 +300,14 @@ TEST_CASE("jbf: CPU vs CUDA exact bitwise, fast within tolerance, both forms, ev
       });
 }
 
-TEST_CASE("bmfr: CPU vs CUDA exact bitwise, fast within tolerance, both strategies, every source",
+TEST_CASE("bmfr: CPU vs CUDA exact bitwise, fast within tolerance, both strategies (skip with TAA), every source",
           "[pipeline][bmfr]") {
   for (const Source& src : sources())
     for (BmfrRankStrategy s : {BmfrRankStrategy::Noise, BmfrRankStrategy::Skip})
       compare_method(src, 6, [&](DenoiserConfig& c) {
         c.method = Method::Bmfr;
         c.bmfr.rank_strategy = s;
+        c.bmfr.taa = s == BmfrRankStrategy::Skip;  // TAA (core/taa.h) on one of the two
       });
 }
 

@@ -10,6 +10,8 @@
 //                 fit: noisy, the pixels counted in the report as fallback_pixels)
 //   post          filtered blended with the reprojected accumulated output -> accumulated
 //                 (history); x albedo + emission -> output
+//   taa           (--bmfr-taa) the output blended with the previous TAA output, clamped to
+//                 its neighbourhood (core/taa.h) -> output and the TAA history
 // The histories ping-pong between two slots: a frame reads slot `slot_` and writes the other.
 #include <stdexcept>
 #include <string>
@@ -19,6 +21,7 @@
 #include "core/arith.h"
 #include "core/denoiser.h"
 #include "core/frame_inputs.h"
+#include "core/taa.h"
 #include "methods/bmfr/accumulate.h"
 #include "methods/bmfr/blocks.h"
 #include "methods/bmfr/params.h"
@@ -33,6 +36,7 @@ inline constexpr const char* kAccumulate = "accumulate";
 inline constexpr const char* kRegression = "regression";
 inline constexpr const char* kWeightedSum = "weighted_sum";
 inline constexpr const char* kPost = "post";
+inline constexpr const char* kTaa = "taa";
 }  // namespace bmfr_stage
 
 namespace bmfr_buffer {
@@ -53,6 +57,11 @@ struct BmfrFrameBuffers {
   BmfrReprojectionView reprojection;
   RgbView filtered;
   BmfrBlockData blocks;
+  // With TAA: post writes `remodulated`, TAA reads it and the previous TAA output `prev_taa`
+  // and writes `taa` and `output`. Without: post writes `output`.
+  RgbView remodulated;
+  ConstRgbView prev_taa;
+  RgbView taa;
   RgbView output;
 };
 
@@ -112,11 +121,22 @@ void run_bmfr_frame(Engine& engine, const BmfrFrameBuffers& b, const BmfrParams&
   post.accumulated = b.accumulated;
   post.albedo = b.in.albedo;
   post.emission = b.in.emission;
-  post.output = b.output;
+  post.output = p.taa ? b.remodulated : b.output;
   post.has_history = has_history;
   post.alpha = p.post_alpha;
   post.albedo_epsilon = p.albedo_epsilon;
   engine.run(stage::kPost, post, w, h);
+
+  if (!p.taa) return;
+  TemporalAntiAliasing taa;
+  taa.guides = g;
+  taa.current = b.remodulated;
+  taa.history = b.prev_taa;
+  taa.history_out = b.taa;
+  taa.output = b.output;
+  taa.has_history = has_history;
+  taa.alpha = p.taa_alpha;
+  engine.run(stage::kTaa, taa, w, h);
 }
 
 template <class Backend>
@@ -125,7 +145,7 @@ class BmfrDenoiser final : public Denoiser {
   BmfrDenoiser(const BmfrParams& params, const EngineConfig& config)
       : params_(params), mode_(config.mode), backend_(config) {
     params_.validate();
-    backend_.set_method_planes(2 * (3 + 3 + 3 + 3 + 1) + 3 + 3 + 1);
+    backend_.set_method_planes(2 * history_planes() + frame_data_planes() + 1);  // + blocks
   }
 
   void denoise(const Frame& in, Image& out) override {
@@ -152,6 +172,11 @@ class BmfrDenoiser final : public Denoiser {
     b.reprojection = {backend_.plane(frame_data_, 0), backend_.plane(frame_data_, 1),
                       backend_.plane(frame_data_, 2)};
     b.filtered = backend_.rgb(frame_data_, 3);
+    if (params_.taa) {
+      b.remodulated = backend_.rgb(frame_data_, kRemodulated);
+      b.prev_taa = backend_.rgb(history_[prev], kTaa);
+      b.taa = backend_.rgb(history_[next], kTaa);
+    }
     b.blocks.data = backend_.plane(blocks_, 0);
     b.output = backend_.output(out);
 #if defined(__CUDACC__)
@@ -171,12 +196,15 @@ class BmfrDenoiser final : public Denoiser {
   void reset() override { has_history_ = false; }
   const FrameReport& last_report() const override { return report_; }
   std::string description() const override {
-    return std::string("bmfr (") + to_string(params_.rank_strategy) + ") " +
-           backend_.description();
+    return std::string("bmfr (") + to_string(params_.rank_strategy) +
+           (params_.taa ? ", taa" : "") + ") " + backend_.description();
   }
   std::vector<std::string> stages() const override {
-    return {kSanitizeStage, bmfr_stage::kAccumulate, bmfr_stage::kRegression,
-            bmfr_stage::kWeightedSum, bmfr_stage::kPost};
+    std::vector<std::string> s = {kSanitizeStage, bmfr_stage::kAccumulate,
+                                  bmfr_stage::kRegression, bmfr_stage::kWeightedSum,
+                                  bmfr_stage::kPost};
+    if (params_.taa) s.push_back(bmfr_stage::kTaa);
+    return s;
   }
   std::vector<std::string> debug_buffers() const override {
     return {bmfr_buffer::kNoisy, bmfr_buffer::kLength, bmfr_buffer::kFiltered,
@@ -205,13 +233,16 @@ class BmfrDenoiser final : public Denoiser {
   }
 
  private:
-  // The planes of a history slot.
-  enum : int { kPosition = 0, kNormal = 3, kNoisy = 6, kAccumulated = 9, kLength = 12,
-               kHistoryPlanes = 13 };
+  // The planes of a history slot (the TAA output only with TAA), and of the frame's data.
+  enum : int { kPosition = 0, kNormal = 3, kNoisy = 6, kAccumulated = 9, kLength = 12, kTaa = 13 };
+  enum : int { kRemodulated = 6 };
+  int history_planes() const { return params_.taa ? kTaa + 3 : kTaa; }
+  int frame_data_planes() const { return params_.taa ? kRemodulated + 3 : kRemodulated; }
 
   void allocate(int w, int h) {
-    for (int s = 0; s < 2; ++s) backend_.allocate(history_[s], kHistoryPlanes, "bmfr history");
-    backend_.allocate(frame_data_, 6, "bmfr reprojection and filtered color");
+    for (int s = 0; s < 2; ++s) backend_.allocate(history_[s], history_planes(), "bmfr history");
+    backend_.allocate(frame_data_, frame_data_planes(),
+                      "bmfr reprojection, filtered and remodulated color");
     // The most blocks any frame's grid has (an offset of -16 adds a column and a row).
     const long long blocks = static_cast<long long>(w / bmfr::kBlockSize + 2) *
                              (h / bmfr::kBlockSize + 2);

@@ -44,6 +44,11 @@ struct BmfrParams {
   float noise_amount = 0.01f;     // NOISE_AMOUNT
   float skip_threshold = 1e-3f;   // Skip: the relative norm under which a column is dropped
   float albedo_epsilon = 1e-3f;   // as SVGF's demodulation (core/modulation.h)
+  // The paper's optional last stage (Sec. 4.4): temporal anti-aliasing of the output
+  // (core/taa.h), blending toward this frame by taa_alpha (TAA_BLEND_ALPHA 0.2). Off by default,
+  // as the paper's quality numbers are given without it.
+  bool taa = false;
+  float taa_alpha = 0.2f;
 
   // std::invalid_argument naming the flag and its range.
   void validate() const {
@@ -54,6 +59,7 @@ struct BmfrParams {
     };
     in_unit(pre_alpha, "--bmfr-pre-alpha");
     in_unit(post_alpha, "--bmfr-post-alpha");
+    in_unit(taa_alpha, "--bmfr-taa-alpha");
     auto positive = [&](float v, const char* flag) {
       if (!(std::isfinite(v) && v > 0.f))
         fail(std::string(flag) + " must be finite and > 0, got " + std::to_string(v));
