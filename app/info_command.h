@@ -1,0 +1,13 @@
+#pragma once
+#include <string>
+#include <vector>
+
+namespace svgf::app {
+
+std::string info_usage();
+// `svgf info SEQ [--json FILE]`: what a sequence holds (size, frames, channels, value ranges,
+// non-finite counts) and whether its files match the manifest. Returns 0 when every frame reads
+// and matches its SHA-256, 1 otherwise (each problem named: file, frame, what).
+int info_command(const std::vector<std::string>& args);
+
+}  // namespace svgf::app

@@ -1,0 +1,80 @@
+// svgf info: what a sequence holds and whether its files match the manifest.
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <string>
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include "app/info_command.h"
+#include "app/options.h"
+#include "io/exr_frame.h"
+#include "io/sequence.h"
+#include "app_test_support.h"
+#include "synthetic_sequence.h"
+#include "test_support.h"
+
+namespace fs = std::filesystem;
+using namespace svgf;
+
+TEST_CASE("svgf info: ranges, non-finite counts per frame and channel, hash mismatches",
+          "[app][info]") {
+  const fs::path dir = test::scratch("info_in"), json_path = test::scratch("info") / "info.json";
+  fs::create_directories(json_path.parent_path());
+  const test::SyntheticScene scene;
+  Frame planted = scene.frame(1);
+  planted.color.at(5, 7, 1) = std::numeric_limits<float>::quiet_NaN();
+  planted.motion.at(3, 2, 0) = std::numeric_limits<float>::infinity();
+  {
+    io::SequenceWriter w(dir.string(), io::FrameStorage{});
+    w.add(scene.frame(0));
+    w.add(planted);
+    w.add(scene.frame(2));
+    io::Manifest m;
+    m.scene = "synthetic";
+    m.generator = "app_info_test";
+    w.commit(m);
+  }
+  // A clean sequence: exit 0, and the ranges are the frames' own.
+  REQUIRE(app::info_command({dir.string(), "--json", json_path.string()}) == 0);
+  auto report = test::read_json(json_path);
+  REQUIRE(report["frames"] == 3);
+  REQUIRE(report["ok"] == true);
+  REQUIRE(report["channels"]["color"]["non_finite"] == 1);
+  REQUIRE(report["channels"]["motion"]["non_finite"] == 1);
+  REQUIRE(report["channels"]["albedo"]["non_finite"] == 0);
+  REQUIRE(report["per_frame"][1]["non_finite"]["color"] == 1);
+  REQUIRE_FALSE(report["per_frame"][0].contains("non_finite"));
+  double lo = 1e30, hi = -1e30, surface = 0;
+  for (int k = 0; k < 3; ++k) {
+    const Frame f = k == 1 ? planted : scene.frame(k);
+    for (float v : f.depth.data()) {
+      lo = std::min(lo, double(v));
+      hi = std::max(hi, double(v));
+      surface += v > 0.f;
+    }
+  }
+  REQUIRE(report["channels"]["depth"]["min"].get<double>() == lo);
+  REQUIRE(report["channels"]["depth"]["max"].get<double>() == hi);
+  REQUIRE(report["surface_fraction"].get<double>() ==
+          Approx(surface / (3.0 * planted.depth.pixel_count())));
+  REQUIRE_FALSE(report["channels"].contains("emission"));  // absent channels are not listed
+
+  // Frame 2 replaced behind the manifest's back: its SHA-256 no longer matches; exit 1 naming it.
+  io::write_frame((dir / io::frame_file_name(2)).string(), scene.frame(5));
+  REQUIRE(app::info_command({dir.string(), "--json", json_path.string()}) == 1);
+  report = test::read_json(json_path);
+  REQUIRE(report["ok"] == false);
+  REQUIRE(report["per_frame"][2]["sha256_ok"] == false);
+  REQUIRE(report["per_frame"][0]["sha256_ok"] == true);
+  bool named = false;
+  for (const auto& p : report["problems"])
+    named = named || p.get<std::string>().find(io::frame_file_name(2)) != std::string::npos;
+  REQUIRE(named);
+
+  REQUIRE_THROWS_AS(app::info_command({}), app::UsageError);
+  REQUIRE_THROWS(app::info_command({(dir / "missing").string()}));  // no manifest: named error
+  fs::remove_all(dir);
+  fs::remove_all(json_path.parent_path());
+}
