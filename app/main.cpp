@@ -1,4 +1,4 @@
-// svgf: the command-line front end. Subcommands: denoise, info (and help).
+// svgf: the command-line front end. Subcommands: denoise, info, compare (and help).
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -6,6 +6,7 @@
 
 #include "app/denoise_command.h"
 #include "app/info_command.h"
+#include "app/compare_command.h"
 #include "app/options.h"
 #include "io/printable.h"
 
@@ -17,6 +18,7 @@ const char* const kUsage =
     "commands:\n"
     "  denoise IN_DIR OUT_DIR   denoise a frame sequence (svgf denoise --help)\n"
     "  info SEQ                 what a sequence holds, checked against its manifest\n"
+    "  compare A B              PSNR, SSIM, relMSE and FLIP of A's frames against B's\n"
     "  help                     this text\n"
     "\n"
     "Fixtures are made and checked by svgf-fixtures.\n";
@@ -33,12 +35,14 @@ int main(int argc, char** argv) {
   try {
     if (args[0] == "denoise") return svgf::app::denoise_command(rest);
     if (args[0] == "info") return svgf::app::info_command(rest);
+    if (args[0] == "compare") return svgf::app::compare_command(rest);
     throw svgf::app::UsageError("unknown command '" + args[0] + "'");
   } catch (const svgf::app::UsageError& e) {
     std::fprintf(stderr, "svgf: %s\n%s", svgf::io::printable(e.what()).c_str(),
                  args[0] == "denoise" ? svgf::app::denoise_usage().c_str()
-                 : args[0] == "info"  ? svgf::app::info_usage().c_str()
-                                      : kUsage);
+                 : args[0] == "info"    ? svgf::app::info_usage().c_str()
+                 : args[0] == "compare" ? svgf::app::compare_usage().c_str()
+                                        : kUsage);
     return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "svgf: error: %s\n", svgf::io::printable(e.what()).c_str());

@@ -1,4 +1,4 @@
-// svgf info: what a sequence holds and whether its files match the manifest.
+// svgf info and svgf compare: what a sequence holds, and how two sets of frames differ.
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -7,6 +7,8 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include "app/compare_command.h"
+#include "app/denoise_command.h"
 #include "app/info_command.h"
 #include "app/options.h"
 #include "io/exr_frame.h"
@@ -33,7 +35,7 @@ TEST_CASE("svgf info: ranges, non-finite counts per frame and channel, hash mism
     w.add(scene.frame(2));
     io::Manifest m;
     m.scene = "synthetic";
-    m.generator = "app_info_test";
+    m.generator = "app_info_compare_test";
     w.commit(m);
   }
   // A clean sequence: exit 0, and the ranges are the frames' own.
@@ -77,4 +79,49 @@ TEST_CASE("svgf info: ranges, non-finite counts per frame and channel, hash mism
   REQUIRE_THROWS(app::info_command({(dir / "missing").string()}));  // no manifest: named error
   fs::remove_all(dir);
   fs::remove_all(json_path.parent_path());
+}
+
+TEST_CASE("svgf compare: the metrics svgf denoise reports, per frame and mean; diff maps",
+          "[app][compare]") {
+  const fs::path in = test::write_synthetic(test::scratch("cmp_in"), 3),
+                 out = test::scratch("cmp_out"), work = test::scratch("cmp_work");
+  fs::create_directories(work);
+  REQUIRE(app::denoise_command({in.string(), out.string(), "--backend", "cpu", "--method",
+                                "gaussian", "--no-preview"}) == 0);
+  const auto denoised = test::read_json(out / "report.json");
+  const fs::path json_path = work / "cmp.json", diff = work / "diff";
+  REQUIRE(app::compare_command({out.string(), in.string(), "--json", json_path.string(),
+                                "--diff", diff.string()}) == 0);
+  const auto cmp = test::read_json(json_path);
+  REQUIRE(cmp["frames"].size() == 3);
+  double mean = 0;
+  for (int k = 0; k < 3; ++k) {
+    // The sequence as B: each frame's reference, as svgf denoise measured it.
+    REQUIRE(cmp["frames"][k]["file"] == io::frame_file_name(k));
+    REQUIRE(cmp["frames"][k]["psnr_db"].get<double>() ==
+            Approx(denoised["frames"][k]["psnr_denoised_db"].get<double>()).epsilon(1e-12));
+    REQUIRE(cmp["frames"][k]["relmse"].get<double>() ==
+            Approx(denoised["frames"][k]["relmse_denoised"].get<double>()).epsilon(1e-12));
+    REQUIRE(cmp["frames"][k]["flip"].get<double>() > 0);
+    REQUIRE(fs::file_size(diff / ("frame_000" + std::to_string(k) + "_flip.png")) > 100);
+    mean += cmp["frames"][k]["psnr_db"].get<double>() / 3;
+  }
+  REQUIRE(cmp["mean"]["psnr_db"].get<double>() == Approx(mean));
+  // Against itself: identical (no PSNR), SSIM 1, FLIP 0.
+  REQUIRE(app::compare_command({out.string(), out.string(), "--json", json_path.string()}) == 0);
+  const auto same = test::read_json(json_path);
+  REQUIRE(same["frames"][1]["identical"] == true);
+  REQUIRE(same["frames"][1]["psnr_db"].is_null());
+  REQUIRE(same["frames"][1]["ssim"].get<double>() == Approx(1.0));
+  REQUIRE(same["frames"][1]["flip"].get<double>() == 0.0);
+  // A file against a file of another size: an error naming both.
+  Image small(8, 8, 3, 0.5f);
+  io::write_rgb_exr((work / "small.exr").string(), small);
+  REQUIRE_THROWS_WITH(app::compare_command({(out / io::frame_file_name(0)).string(),
+                                            (work / "small.exr").string()}),
+                      Catch::Contains("small.exr") && Catch::Contains("8x8"));
+  REQUIRE_THROWS_AS(app::compare_command({out.string()}), app::UsageError);
+  fs::remove_all(in);
+  fs::remove_all(work);
+  test::remove_output(out);
 }

@@ -1,0 +1,148 @@
+#include "app/compare_command.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "app/options.h"
+#include "io/atomic_file.h"
+#include "io/exr_frame.h"
+#include "io/io_error.h"
+#include "io/png.h"
+#include "io/printable.h"
+#include "metrics/flip.h"
+#include "metrics/image_metrics.h"
+#include "metrics/ssim.h"
+
+namespace fs = std::filesystem;
+
+namespace svgf::app {
+namespace {
+
+using json = nlohmann::json;
+
+bool is_frame_name(const std::string& name) {
+  return name.size() > 4 && name.rfind("frame_", 0) == 0 &&
+         name.compare(name.size() - 4, 4, ".exr") == 0;
+}
+
+// The frame files of a folder (frame_*.exr, by name), or the one file given.
+std::vector<std::string> images_of(const std::string& path) {
+  if (!fs::is_directory(path)) {
+    if (!fs::is_regular_file(path)) throw UsageError("'" + path + "' is neither a file nor a folder");
+    return {fs::path(path).filename().string()};
+  }
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(path))
+    if (e.is_regular_file() && is_frame_name(e.path().filename().string()))
+      names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  if (names.empty()) throw UsageError("no frame_*.exr files in '" + path + "'");
+  return names;
+}
+
+std::string file_in(const std::string& path, const std::string& name) {
+  return fs::is_directory(path) ? (fs::path(path) / name).string() : path;
+}
+
+// An image to compare against: a sequence frame (a folder with manifest.json) gives its
+// reference channel; any other EXR its R, G, B.
+Image reference_image(const std::string& b, const std::string& name) {
+  const std::string file = file_in(b, name);
+  if (fs::is_directory(b) && fs::exists(fs::path(b) / "manifest.json")) {
+    Frame f = io::read_frame(file);
+    if (!f.has_reference())
+      throw io::IoError(file + ": a sequence frame without a 'reference' channel");
+    return std::move(f.reference);
+  }
+  return io::read_rgb_exr(file);
+}
+
+json finite_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+// The FLIP error map as a gray PNG (0: no visible difference, white: the largest).
+void write_flip_png(const std::string& path, const Image& map) {
+  std::vector<uint8_t> rgb(map.pixel_count() * 3);
+  for (size_t i = 0; i < map.pixel_count(); ++i) {
+    const float v = std::min(1.f, std::max(0.f, map.plane(0)[i]));
+    rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = static_cast<uint8_t>(std::lround(v * 255.f));
+  }
+  io::write_png_rgb8(path, rgb.data(), map.width(), map.height());
+}
+
+}  // namespace
+
+std::string compare_usage() {
+  return "usage: svgf compare A B [--json FILE] [--diff DIR]\n"
+         "  PSNR, SSIM, relMSE and FLIP (docs/metrics.md) of A's images against B's, per frame\n"
+         "  and mean. A and B are EXR files or folders of frame_NNNN.exr (matched by name); a\n"
+         "  sequence folder (with manifest.json) as B gives each frame's reference channel.\n"
+         "  --json FILE               also write the numbers as JSON\n"
+         "  --diff DIR                write each frame's FLIP error map as DIR/<name>_flip.png\n";
+}
+
+int compare_command(const std::vector<std::string>& args) {
+  const Options o(args, {"json", "diff"}, {"help"});
+  if (o.has("help")) {
+    std::fputs(compare_usage().c_str(), stdout);
+    return 0;
+  }
+  if (o.positional().size() != 2) throw UsageError("compare takes two paths, A and B");
+  const std::string a = o.positional()[0], b = o.positional()[1];
+  const std::vector<std::string> names = images_of(a);
+  const std::string diff_dir = o.get("diff", "");
+  if (!diff_dir.empty()) fs::create_directories(diff_dir);
+
+  json frames = json::array();
+  double sum[4] = {0, 0, 0, 0};
+  int finite_psnr = 0;
+  std::printf("%-24s %10s %8s %10s %8s\n", "frame", "PSNR dB", "SSIM", "relMSE", "FLIP");
+  for (const std::string& name : names) {
+    const std::string fa = file_in(a, name);
+    const Image ia = io::read_rgb_exr(fa);
+    const Image ib = reference_image(b, fs::is_directory(b) ? name : fs::path(b).filename().string());
+    if (ia.width() != ib.width() || ia.height() != ib.height())
+      throw io::IoError(fa + " is " + std::to_string(ia.width()) + "x" + std::to_string(ia.height()) +
+                        ", its counterpart in " + b + " " + std::to_string(ib.width()) + "x" +
+                        std::to_string(ib.height()));
+    const double psnr = metrics::psnr(ia, ib), ssim = metrics::ssim(ia, ib),
+                 rel = metrics::relmse(ia, ib);
+    const Image flip_map = metrics::flip_map(ia, ib);
+    double flip = 0;  // the map's mean, as metrics::flip gives it; the map is kept for --diff
+    for (float v : flip_map.data()) flip += v;
+    flip /= static_cast<double>(flip_map.pixel_count());
+    frames.push_back({{"file", name}, {"psnr_db", finite_or_null(psnr)}, {"identical", !std::isfinite(psnr)},
+                      {"ssim", ssim}, {"relmse", rel}, {"flip", flip}});
+    if (std::isfinite(psnr)) {
+      sum[0] += psnr;
+      ++finite_psnr;
+    }
+    sum[1] += ssim;
+    sum[2] += rel;
+    sum[3] += flip;
+    std::printf("%-24s %10.3f %8.5f %10.6f %8.5f\n", name.c_str(), psnr, ssim, rel, flip);
+    if (!diff_dir.empty())
+      write_flip_png((fs::path(diff_dir) / (name.substr(0, name.size() - 4) + "_flip.png")).string(),
+                     flip_map);
+  }
+  const double n = static_cast<double>(names.size());
+  const json mean = {{"psnr_db", finite_psnr ? json(sum[0] / finite_psnr) : json(nullptr)},
+                     {"ssim", sum[1] / n},
+                     {"relmse", sum[2] / n},
+                     {"flip", sum[3] / n}};
+  std::printf("%-24s %10.3f %8.5f %10.6f %8.5f   (PSNR over the %d frames that differ)\n", "mean",
+              finite_psnr ? sum[0] / finite_psnr : INFINITY, sum[1] / n, sum[2] / n, sum[3] / n,
+              finite_psnr);
+  if (o.has("json"))
+    io::write_file_atomically(o.get("json", ""),
+                              json{{"a", a}, {"b", b}, {"frames", frames}, {"mean", mean}}.dump(2) + "\n");
+  return 0;
+}
+
+}  // namespace svgf::app
