@@ -207,12 +207,19 @@ void run(const RunSettings& s, Denoiser& denoiser, RunProgress& progress) {
   ProgressBar bar("denoise", frames);
   Image out;
   progress.stage = "denoising";
+  Camera previous_camera;
+  bool has_previous = false;
   for (const PlannedFrame& planned : plan) {
     throw_if_interrupted();  // between frames: a frame is denoised and written whole or not at all
     progress.frame = planned.number;
     progress.file = sequence.path(planned.position);
     const Frame in = sequence.read(planned.position);
     if (!planned.reset.empty()) denoiser.reset();
+    report.add_warnings(planned.number,
+                        input_warnings(in, has_previous && planned.reset.empty() ? &previous_camera
+                                                                                 : nullptr));
+    previous_camera = in.camera;
+    has_previous = true;
     const auto t0 = std::chrono::steady_clock::now();
     denoiser.denoise(in, out);
     const double ms =

@@ -1,5 +1,6 @@
 #include "app/info_command.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -9,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/input_warnings.h"
 #include "app/options.h"
 #include "io/atomic_file.h"
 #include "io/printable.h"
@@ -107,6 +109,9 @@ int info_command(const std::vector<std::string>& args) {
   std::map<std::string, ChannelStats> stats;
   json frames = json::array(), problems = json::array();
   int64_t surface = 0, pixels = 0;
+  json warnings = json::array();
+  Camera previous_camera;
+  bool has_previous = false;
   for (int k = 0; k < seq.size(); ++k) {
     json fr = {{"frame", k}, {"file", m.frames[static_cast<size_t>(k)].name}};
     const auto problem = [&](const std::string& what) {
@@ -130,6 +135,13 @@ int info_command(const std::vector<std::string>& args) {
         problems.push_back(seq.path(k) + ": non-finite values " + non_finite.dump() +
                            " (svgf denoise repairs them: docs/bad-input.md)");
       }
+      const bool cut = std::find(m.camera_cuts.begin(), m.camera_cuts.end(), k) != m.camera_cuts.end();
+      for (const InputWarning& w : input_warnings(f, has_previous && !cut ? &previous_camera : nullptr)) {
+        fr["warnings"].push_back(w.kind);
+        warnings.push_back(seq.path(k) + ": " + w.text);
+      }
+      previous_camera = f.camera;
+      has_previous = true;
       for (float d : f.depth.data()) surface += d > 0.f;
       pixels += static_cast<int64_t>(f.depth.pixel_count());
     } catch (const io::IoError& e) {
@@ -143,6 +155,7 @@ int info_command(const std::vector<std::string>& args) {
   report["surface_fraction"] = pixels > 0 ? double(surface) / double(pixels) : 0.0;
   report["per_frame"] = frames;
   report["problems"] = problems;
+  report["warnings"] = warnings;
   int failed = 0;
   for (const json& fr : frames)
     failed += !fr.value("sha256_ok", false) || fr.contains("problems") ? 1 : 0;
@@ -162,6 +175,8 @@ int info_command(const std::vector<std::string>& args) {
   }
   for (const json& p : problems)
     std::fprintf(stderr, "svgf: %s\n", io::printable(p.get<std::string>()).c_str());
+  for (const json& w : warnings)
+    std::fprintf(stderr, "svgf: warning: %s\n", io::printable(w.get<std::string>()).c_str());
   std::printf("  %s\n", failed == 0 ? "every frame reads and matches the manifest"
                                     : (std::to_string(failed) + " of " +
                                        std::to_string(seq.size()) + " frames failed").c_str());

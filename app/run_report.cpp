@@ -36,6 +36,7 @@ RunReport::RunReport(const std::string& in_dir, const std::string& scene, int wi
   json_["height"] = height;
   json_["denoiser"] = denoiser;
   json_["frames"] = nlohmann::json::array();
+  json_["input_warnings"] = nlohmann::json::array();
   csv_ = "frame,time_ms,filter_ms,replaced_samples,psnr_noisy_db,psnr_denoised_db,relmse_noisy,"
          "relmse_denoised\n";
 }
@@ -84,6 +85,17 @@ std::string RunReport::add(const PlannedFrame& planned, const std::string& input
   return detail;
 }
 
+void RunReport::add_warnings(int frame, const std::vector<InputWarning>& warnings) {
+  for (const InputWarning& w : warnings) {
+    json_["input_warnings"].push_back({{"frame", frame}, {"kind", w.kind}, {"text", w.text}});
+    WarningCount& c = warnings_[w.kind];
+    if (c.frames++ == 0) {
+      c.first_frame = frame;
+      c.text = w.text;
+    }
+  }
+}
+
 void RunReport::write(const std::string& folder) {
   json_["mean_time_ms"] = total_ms_ / frames_;
   json_["replaced_samples"] = replaced_total_;
@@ -104,6 +116,9 @@ void RunReport::print_summary(const std::string& in_dir, const std::string& out_
   std::printf("  time per frame    %s ms (mean, I/O excluded)\n", fixed(total_ms_ / frames_, 2).c_str());
   std::printf("  replaced samples  %lld (color NaN, Inf, negative or > 1e8, set to 0)\n",
               static_cast<long long>(replaced_total_));
+  for (const auto& [kind, c] : warnings_)
+    std::fprintf(stderr, "svgf: warning: %s (%d frames, the first %d)\n", c.text.c_str(), c.frames,
+                 c.first_frame);
   if (fallback_total_ > 0)
     std::printf("  fallback pixels   %lld (the filter had no result; the method's fallback: "
                 "docs/bad-input.md)\n",

@@ -1,11 +1,14 @@
 #pragma once
 // What svgf denoise reports: report.json and report.csv of a finished run, and the failure
 // report beside OUT_DIR of a run that stopped (docs/frame-format.md, "Output folder").
+#include <map>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "app/frame_order.h"
+#include "app/input_warnings.h"
 #include "core/denoiser.h"
 #include "core/frame.h"
 
@@ -22,6 +25,9 @@ class RunReport {
   // Adds one denoised frame; returns the progress bar's detail ("3.2 ms, PSNR 31.20 dB").
   std::string add(const PlannedFrame& planned, const std::string& input_file, double ms,
                   const FrameReport& r, const Frame& in, const Image& out);
+  // Input traps found in frame `frame` (app/input_warnings.h): listed in report.json, counted
+  // by kind for the summary.
+  void add_warnings(int frame, const std::vector<InputWarning>& warnings);
   // report.csv, then report.json, each written atomically and checked (an IoError naming the
   // file on a short write), into `folder`.
   void write(const std::string& folder);
@@ -38,6 +44,11 @@ class RunReport {
   int64_t fallback_total_ = 0;
   InputRepairs repairs_total_;  // the sanitize stage's, per kind (docs/bad-input.md)
   int frames_repaired_ = 0;
+  struct WarningCount {
+    int frames = 0, first_frame = 0;
+    std::string text;
+  };
+  std::map<std::string, WarningCount> warnings_;  // by kind
 };
 
 // Where a run stands, for the failure report.

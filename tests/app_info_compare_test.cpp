@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
@@ -123,5 +124,48 @@ TEST_CASE("svgf compare: the metrics svgf denoise reports, per frame and mean; d
   REQUIRE_THROWS_AS(app::compare_command({out.string()}), app::UsageError);
   fs::remove_all(in);
   fs::remove_all(work);
+  test::remove_output(out);
+}
+
+TEST_CASE("silent traps are warned of: no surface, constant albedo, a moving camera without motion",
+          "[app][info]") {
+  const test::SyntheticScene scene;
+  std::vector<Frame> frames = {scene.frame(0), scene.frame(1), scene.frame(2), scene.frame(3)};
+  for (float& d : frames[1].depth.data()) d = 0.f;  // "unknown depth filled with 0"
+  for (float& a : frames[2].albedo.data()) a = 1.f;  // "no albedo buffer"
+  frames[3].camera.world_to_view[3] = frames[2].camera.world_to_view[3] + 0.5f;
+  for (float& m : frames[3].motion.data()) m = 0.f;
+  const fs::path dir = test::scratch("traps"), out = test::scratch("traps_out"),
+                 json_path = test::scratch("traps_json") / "info.json";
+  fs::create_directories(json_path.parent_path());
+  {
+    io::SequenceWriter w(dir.string(), io::FrameStorage{});
+    for (const Frame& f : frames) w.add(f);
+    io::Manifest m;
+    m.scene = "synthetic";
+    w.commit(m);
+  }
+  const std::vector<std::vector<std::string>> expected = {{}, {"no-surface"}, {"constant-albedo"},
+                                                          {"zero-motion"}};
+  REQUIRE(app::info_command({dir.string(), "--json", json_path.string()}) == 0);  // warnings only
+  const auto info = test::read_json(json_path);
+  for (int k = 0; k < 4; ++k) {
+    INFO("frame " << k);
+    std::vector<std::string> kinds;
+    if (info["per_frame"][k].contains("warnings"))
+      for (const auto& w : info["per_frame"][k]["warnings"]) kinds.push_back(w);
+    REQUIRE(kinds == expected[static_cast<size_t>(k)]);
+  }
+  REQUIRE(app::denoise_command({dir.string(), out.string(), "--backend", "cpu", "--method",
+                                "gaussian", "--no-preview"}) == 0);
+  const auto report = test::read_json(out / "report.json");
+  REQUIRE(report["input_warnings"].size() == 3);
+  for (const auto& w : report["input_warnings"]) {
+    const int k = w["frame"];
+    REQUIRE(w["kind"] == expected[static_cast<size_t>(k)].at(0));
+    REQUIRE(w["text"].get<std::string>().size() > 40);  // a sentence saying what to do
+  }
+  fs::remove_all(dir);
+  fs::remove_all(json_path.parent_path());
   test::remove_output(out);
 }
