@@ -114,9 +114,7 @@ int compare_command(const std::vector<std::string>& args) {
     const double psnr = metrics::psnr(ia, ib), ssim = metrics::ssim(ia, ib),
                  rel = metrics::relmse(ia, ib);
     const Image flip_map = metrics::flip_map(ia, ib);
-    double flip = 0;  // the map's mean, as metrics::flip gives it; the map is kept for --diff
-    for (float v : flip_map.data()) flip += v;
-    flip /= static_cast<double>(flip_map.pixel_count());
+    const double flip = metrics::flip_mean(flip_map);  // the map is kept for --diff
     frames.push_back({{"file", name}, {"psnr_db", finite_or_null(psnr)}, {"identical", !std::isfinite(psnr)},
                       {"ssim", ssim}, {"relmse", rel}, {"flip", flip}});
     if (std::isfinite(psnr)) {

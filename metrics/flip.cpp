@@ -289,12 +289,15 @@ Image flip_map(const Image& test, const Image& reference, const FlipOptions& opt
   return out;
 }
 
-double flip(const Image& test, const Image& reference, const FlipOptions& options) {
-  const Image m = flip_map(test, reference, options);
+double flip_mean(const Image& m) {
   if (m.pixel_count() == 0) return 0.0;
   double sum = 0;
   for (size_t i = 0; i < m.pixel_count(); ++i) sum += m.plane(0)[i];
   return sum / static_cast<double>(m.pixel_count());
+}
+
+double flip(const Image& test, const Image& reference, const FlipOptions& options) {
+  return flip_mean(flip_map(test, reference, options));
 }
 
 }  // namespace svgf::metrics

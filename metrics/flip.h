@@ -17,5 +17,7 @@ struct FlipOptions {
 Image flip_map(const Image& test, const Image& reference, const FlipOptions& options = {});
 // Mean of flip_map: 0 for identical images.
 double flip(const Image& test, const Image& reference, const FlipOptions& options = {});
+// The mean of a flip_map (what flip() returns), for callers that keep the map.
+double flip_mean(const Image& map);
 
 }  // namespace svgf::metrics
