@@ -13,6 +13,10 @@ const char* const kMethodParamUsage =
     "  --alpha A                 svgf: color temporal blend floor (default 0.05)\n"
     "  --moments-alpha A         svgf: moments temporal blend floor (default 0.2)\n"
     "  --phi-color X             svgf: luminance edge-stopping (default 10)\n"
+    "  --history-cap N           svgf: longest history in frames (default 32)\n"
+    "  --variance-of-mean on|off svgf: filter with the accumulated mean's variance (default off)\n"
+    "  --svgf-preset NAME        svgf: default, falcor, paper or converge, set before the flags\n"
+    "                            above (docs/svgf.md)\n"
     "  --phi-normal X            svgf: normal edge-stopping exponent (default 128)\n"
     "  --phi-depth X             svgf: depth edge-stopping, 0 = no depth term (default 1)\n"
     "  --sigma S                 gaussian: standard deviation in pixels (default 2)\n"
@@ -51,6 +55,10 @@ const std::map<std::string, std::vector<std::string>>& readers() {
       {"phi-color", {"svgf"}},
       {"phi-normal", {"svgf"}},
       {"phi-depth", {"svgf"}},
+      {"variance-of-mean", {"svgf"}},
+      {"history-cap", {"svgf"}},
+      {"svgf-preset", {"svgf"}},
+
       {"sigma", {"gaussian"}},
       {"radius", {"gaussian"}},
       {"kernel-size", {"wavelet"}},
@@ -90,6 +98,14 @@ const std::set<std::string>& method_param_flags() {
 
 void read_method_params(const Options& o, DenoiserConfig& c) {
   SvgfParams& p = c.svgf;
+  // A named configuration first; the single flags below change it.
+  if (o.has("svgf-preset")) {
+    try {
+      p = svgf_preset(o.get("svgf-preset", "default"));
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(e.what());
+    }
+  }
   p.iterations = o.get_int("iterations", p.iterations, 0, 12);
   p.feedback_tap = o.get_int("feedback-tap", p.feedback_tap, -1, 11);
   p.alpha = o.get_float("alpha", p.alpha);
@@ -97,6 +113,8 @@ void read_method_params(const Options& o, DenoiserConfig& c) {
   p.phi_color = o.get_float("phi-color", p.phi_color);
   p.phi_normal = o.get_float("phi-normal", p.phi_normal);
   p.phi_depth = o.get_float("phi-depth", p.phi_depth);
+  p.history_cap = o.get_int("history-cap", p.history_cap, 1, 4096);
+  p.variance_of_mean = o.get_on_off("variance-of-mean", p.variance_of_mean);
   GaussianParams& g = c.gaussian;
   g.sigma = o.get_float("sigma", g.sigma);
   g.radius = o.get_int("radius", g.radius, 0, 1024);
@@ -123,10 +141,7 @@ void read_method_params(const Options& o, DenoiserConfig& c) {
   b.position_limit_sq = o.get_float("bmfr-position-limit", b.position_limit_sq);
   b.normal_limit_sq = o.get_float("bmfr-normal-limit", b.normal_limit_sq);
   b.taa_alpha = o.get_float("bmfr-taa-alpha", b.taa_alpha);
-  const std::string taa = o.get("bmfr-taa", b.taa ? "on" : "off");
-  if (taa != "on" && taa != "off")
-    throw UsageError("--bmfr-taa must be on or off, got '" + taa + "'");
-  b.taa = taa == "on";
+  b.taa = o.get_on_off("bmfr-taa", b.taa);
   try {
     b.rank_strategy = parse_bmfr_rank_strategy(o.get("bmfr-rank", to_string(b.rank_strategy)));
     b.validate();

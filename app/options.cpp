@@ -49,6 +49,13 @@ int Options::get_int(const std::string& name, int fallback, int lo, int hi) cons
   return static_cast<int>(v);
 }
 
+bool Options::get_on_off(const std::string& name, bool fallback) const {
+  if (!has(name)) return fallback;
+  const std::string& s = values_.at(name);
+  if (s != "on" && s != "off") throw UsageError("--" + name + " must be on or off, got '" + s + "'");
+  return s == "on";
+}
+
 float Options::get_float(const std::string& name, float fallback) const {
   if (!has(name)) return fallback;
   const std::string& s = values_.at(name);

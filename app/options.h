@@ -23,6 +23,7 @@ class Options {
   std::string get(const std::string& name, const std::string& fallback) const;
   int get_int(const std::string& name, int fallback, int lo, int hi) const;
   float get_float(const std::string& name, float fallback) const;
+  bool get_on_off(const std::string& name, bool fallback) const;  // the value "on" or "off"
 
  private:
   std::vector<std::string> positional_;

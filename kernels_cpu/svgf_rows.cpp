@@ -231,7 +231,7 @@ void variance_span(const VarianceKernel& k, const float* __restrict lum, int y, 
     const float ws = max_f(sw[x], 1e-6f);
     const float m1 = sm1[x] / ws, m2 = sm2[x] / ws;
     k.out.color.store(i, make_vec3(sr[x] / ws, sg[x] / ws, sb[x] / ws));
-    k.out.variance[i] = max_f(0.f, m2 - m1 * m1) * (young / hist);
+    k.out.variance[i] = spatial_variance(p, m1, m2, hist);
   }
 }
 
@@ -244,7 +244,7 @@ void variance_row(const VarianceKernel& k, const float* __restrict lum, int y, R
   for (int x = 0; x < w; ++x) {  // pass-through; the estimate overwrites young pixels below
     const int i = row + x;
     k.out.color.store(i, k.accumulated.color.load(i));
-    k.out.variance[i] = k.accumulated.variance[i];
+    k.out.variance[i] = temporal_variance(k.params, k.accumulated.variance[i], k.history[i]);
   }
   // The 7x7 work runs only over runs of pixels that need it (young history on a surface): after
   // a disocclusion, or at the edge a camera pan uncovers, they are short. Runs closer than

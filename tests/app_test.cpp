@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/denoise_command.h"
+#include "app/method_options.h"
 #include "app/frame_order.h"
 #include "app/options.h"
 #include "io/exr_frame.h"
@@ -218,6 +219,38 @@ TEST_CASE("svgf denoise --method bmfr: its flags reach the filter, bad values na
                       Catch::Contains("--bmfr-rank applies to bmfr, not to svgf"));
   fs::remove_all(in);
   test::remove_output(out);
+}
+
+// Issue 12, item 5: a named SVGF configuration first, the single flags on top of it.
+TEST_CASE("svgf flags: --svgf-preset picks the paper's or Falcor's values, flags change them",
+          "[app]") {
+  const auto params = [](std::vector<std::string> args) {
+    const app::Options o(args, app::method_param_flags(), {});
+    DenoiserConfig c;
+    app::read_method_params(o, c);
+    return c.svgf;
+  };
+  const SvgfParams falcor = params({"--svgf-preset", "falcor"});
+  CHECK(falcor.feedback_tap == 1);
+  CHECK(falcor.phi_color == 10.f);
+  CHECK_FALSE(falcor.variance_of_mean);
+  // Flag order does not matter: the preset is applied first.
+  const SvgfParams changed =
+      params({"--phi-color", "5", "--svgf-preset", "paper", "--variance-of-mean", "on"});
+  CHECK(changed.iterations == 5);
+  CHECK(changed.feedback_tap == 0);
+  CHECK(changed.phi_color == 5.f);
+  CHECK(changed.variance_of_mean);
+  CHECK(params({"--history-cap", "16"}).history_cap == 16);
+  const SvgfParams converge = params({"--svgf-preset", "converge", "--iterations", "3"});
+  CHECK(converge.feedback_tap == -1);
+  CHECK(converge.variance_of_mean);
+  CHECK(converge.iterations == 3);
+  REQUIRE_THROWS_WITH(params({"--svgf-preset", "nvidia"}), Catch::Contains("--svgf-preset") &&
+                                                               Catch::Contains("nvidia"));
+  REQUIRE_THROWS_WITH(params({"--variance-of-mean", "yes"}),
+                      Catch::Contains("--variance-of-mean must be on or off"));
+  REQUIRE_THROWS_WITH(params({"--history-cap", "0"}), Catch::Contains("--history-cap"));
 }
 
 // Issue 15, item 2: frames were read in the manifest's order and outputs numbered by position.

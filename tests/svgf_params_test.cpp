@@ -156,6 +156,7 @@ TEST_CASE("params: every SvgfParams and GaussianParams default is its documented
   CHECK(p.alpha == 0.05f);
   CHECK(p.moments_alpha == 0.2f);
   CHECK(p.history_cap == 32);
+  CHECK_FALSE(p.variance_of_mean);
   CHECK(p.reproject_depth_gradient_scale == 10.f);
   CHECK(p.reproject_depth_relative == 0.03f);
   CHECK(p.reproject_normal_cos == 0.9f);
@@ -327,4 +328,44 @@ TEST_CASE("params: bilinear taps are kept down to a total weight of 0.01", "[par
   const ReprojectRun fallback =
       reproject_once(w, h, 1.f, 1.f, 1.f, 1.f, hist, mesh, 0.125f, 20.f / 256);
   REQUIRE(fallback.history.at(2, 2, 0) == 4.f);
+}
+
+TEST_CASE("params: the paper's, Falcor's and the converging configurations by name",
+          "[params]") {
+  // Schied et al. 2017 (Sec. 4-5): 5 iterations, the first one's output fed back, sigma_l 4,
+  // alpha 0.2 for color and moments. Falcor's SVGFPass: 4 iterations, tap 1, phi_color 10,
+  // alpha 0.05, moments 0.2, history capped at 32. Neither divides the variance by the history.
+  const SvgfParams paper = svgf_preset("paper");
+  CHECK(paper.iterations == 5);
+  CHECK(paper.feedback_tap == 0);
+  CHECK(paper.phi_color == 4.f);
+  CHECK(paper.alpha == 0.2f);
+  CHECK(paper.moments_alpha == 0.2f);
+  CHECK(paper.history_cap == 32);
+  CHECK_FALSE(paper.variance_of_mean);
+  const SvgfParams falcor = svgf_preset("falcor");
+  CHECK(falcor.iterations == 4);
+  CHECK(falcor.feedback_tap == 1);
+  CHECK(falcor.phi_color == 10.f);
+  CHECK(falcor.alpha == 0.05f);
+  CHECK(falcor.moments_alpha == 0.2f);
+  CHECK(falcor.history_cap == 32);
+  CHECK_FALSE(falcor.variance_of_mean);
+  // docs/svgf.md, Static convergence.
+  const SvgfParams converge = svgf_preset("converge");
+  CHECK(converge.iterations == 4);
+  CHECK(converge.feedback_tap == -1);
+  CHECK(converge.phi_color == 4.f);
+  CHECK(converge.alpha == 0.03f);
+  CHECK(converge.history_cap == 64);
+  CHECK(converge.variance_of_mean);
+  // The rest are the defaults; "default" is SvgfParams().
+  CHECK(converge.phi_normal == SvgfParams().phi_normal);
+  CHECK(converge.moments_alpha == SvgfParams().moments_alpha);
+  CHECK(svgf_preset("default").feedback_tap == SvgfParams().feedback_tap);
+  CHECK(svgf_preset("default").variance_of_mean == SvgfParams().variance_of_mean);
+  for (const SvgfParams& p : {paper, falcor, converge}) REQUIRE_NOTHROW(p.validate());
+  REQUIRE_THROWS_WITH(svgf_preset("Falcor"),
+                      Catch::Contains("default, falcor, paper or converge") &&
+                          Catch::Contains("'Falcor'"));
 }

@@ -25,7 +25,10 @@ struct VarianceRig {
   SvgfParams params;
   VarianceRig(const test::TestDevice& d, int w_, int h_, float history_length)
       : device(d), w(w_), h(h_), frame(test::flat_frame(w_, h_)), accumulated(w_, h_, 4), moments(w_, h_, 2),
-        history(w_, h_, 1, history_length), out(w_, h_, 4) {}
+        history(w_, h_, 1, history_length), out(w_, h_, 4) {
+    // The paper's estimate (the sample variance); the variance of the mean has its own test.
+    params.variance_of_mean = false;
+  }
   // The stage as the pipeline runs it, in the device's flavor (exact planes or fast packed).
   void run() {
     test::StageRunner r(device);
@@ -182,8 +185,40 @@ void radius_threshold_depth_scale(const TestDevice& d) {
   }
 }
 
+// With variance_of_mean on, the variance passed on is the paper's estimate / n for
+// n = min(history, (2 - alpha) / alpha), in the temporal and in the spatial branch.
+void variance_of_the_mean(const TestDevice& d) {
+  struct Case {
+    float history, alpha, n;
+  };
+  // n below, at and above the cap (2 - alpha) / alpha; alpha 0.5 caps it at 3 (history 8).
+  for (const Case c : {Case{5.f, 0.03f, 5.f}, Case{40.f, 0.03f, 40.f},
+                       Case{80.f, 0.03f, (2.f - 0.03f) / 0.03f}, Case{8.f, 0.5f, 3.f},
+                       Case{2.f, 0.03f, 2.f}, Case{1.f, 0.03f, 1.f}}) {
+    VarianceRig paper(d, 21, 21, c.history);
+    paper.params.alpha = c.alpha;
+    test::fill_uniform(paper.accumulated, 0.f, 2.f, 31);
+    test::fill_uniform(paper.moments, 0.f, 1.f, 32);
+    for (int i = 0; i < 21 * 21; ++i)
+      paper.moments.plane(1)[i] += paper.moments.plane(0)[i] * paper.moments.plane(0)[i];
+    VarianceRig mean = paper;
+    mean.params.variance_of_mean = true;
+    paper.run();
+    mean.run();
+    INFO("history " << c.history << ", alpha " << c.alpha);
+    for (int i = 0; i < 21 * 21; ++i) {
+      // Same colors; the variance divided by n (one extra rounding).
+      for (int ch = 0; ch < 3; ++ch) REQUIRE(mean.out.plane(ch)[i] == paper.out.plane(ch)[i]);
+      REQUIRE(mean.out.plane(3)[i] ==
+              Approx(paper.out.plane(3)[i] / c.n).epsilon(d.tolerance(2e-7)).margin(1e-30));
+    }
+  }
+}
+
 }  // namespace
 
+SVGF_DEVICE_TEST("variance: variance_of_mean divides by min(history, (2 - alpha) / alpha)",
+                 "[variance]", variance_of_the_mean)
 SVGF_DEVICE_TEST("variance: with history >= 4 the temporal estimate passes through",
                  "[variance]", old_history_passes_through)
 SVGF_DEVICE_TEST("variance: young history on a constant image gives zero variance",

@@ -15,10 +15,14 @@ struct SvgfParams {
   float albedo_epsilon = 1e-3f;
 
   // Temporal accumulation (paper Sec. 4.1): exponential moving average with factor
-  // max(alpha, 1/history) so the first frames are a plain mean.
+  // max(alpha, 1/history) so the first frames are a plain mean. The paper blends with 0.2.
   float alpha = 0.05f;
   float moments_alpha = 0.2f;
   int history_cap = 32;
+
+  // A new sample's luminance is clamped to the history's mean + outlier_sigma standard
+  // deviations before it enters the color (methods/svgf/reproject.h); 0: no clamp.
+  float outlier_sigma = 4.f;
 
   // Reprojection tap tests. A tap is kept when its mesh id matches, its world normals agree to
   // within reproject_normal_cos, and |z - z_prev| <= scale * fwidth(z) + relative * z.
@@ -32,12 +36,20 @@ struct SvgfParams {
   int spatial_variance_history = 4;
   int spatial_variance_radius = 3;
   float spatial_variance_phi_depth = 3.f;  // depth tolerance of the spatial estimate (Falcor)
+  // The filter's variance is that of the accumulated mean, the moments' sample variance / n for
+  // about n = min(history, (2 - alpha) / alpha) accumulated samples (methods/svgf/variance.h),
+  // so the luminance edge-stopping tightens as the history grows and the spatial filter steps
+  // back on converged pixels. Off: the sample variance itself, as in the paper and Falcor.
+  bool variance_of_mean = false;
 
   // Edge-stopping functions of the a-trous filter (paper Eq. 3-4).
   int iterations = 4;     // Falcor: 4; the paper uses 5
-  int feedback_tap = 1;   // iteration whose output is the next frame's color history; -1: none
-                          // (the unfiltered accumulation is fed back)
-  float phi_color = 10.f;
+  // Iteration whose output is the next frame's color history; -1: none (the unfiltered
+  // accumulation is fed back). The paper feeds back iteration 0, Falcor iteration 1; both
+  // re-blur the history every frame, so a static scene loses detail frame after frame
+  // (docs/svgf.md: Static convergence).
+  int feedback_tap = 1;
+  float phi_color = 10.f;  // the paper's sigma_l is 4
   float phi_normal = 128.f;
   float phi_depth = 1.f;
   float variance_epsilon = 1e-4f;  // added under the square root of the luminance sigma
@@ -68,7 +80,8 @@ struct SvgfParams {
     at_least(phi_depth, 0.f, "--phi-depth");
     if (!(albedo_epsilon > 0.f && albedo_epsilon <= 1.f))
       fail("albedo_epsilon must be in (0, 1], got " + std::to_string(albedo_epsilon));
-    if (history_cap < 1) fail("history_cap must be >= 1, got " + std::to_string(history_cap));
+    if (history_cap < 1 || history_cap > 4096)
+      fail("--history-cap must be in [1, 4096], got " + std::to_string(history_cap));
     at_least(reproject_depth_gradient_scale, 0.f, "reproject_depth_gradient_scale");
     at_least(reproject_depth_relative, 0.f, "reproject_depth_relative");
     if (!(reproject_normal_cos >= -1.f && reproject_normal_cos <= 1.f))
@@ -85,6 +98,40 @@ struct SvgfParams {
            std::to_string(depth_gradient_floor));
   }
 };
+
+// Named configurations (--svgf-preset):
+//   "default"   the defaults above (Falcor's values);
+//   "falcor"    Falcor's SVGFPass: 4 iterations, feedback tap 1, phi_color 10, alpha 0.05,
+//               history cap 32 (today the same as "default");
+//   "paper"     Schied et al. 2017: 5 iterations, tap 0, sigma_l 4, alpha 0.2;
+//   "converge"  what makes a static scene converge (docs/svgf.md: Static convergence): the
+//               unfiltered accumulation fed back (tap -1), the variance of the mean, sigma_l 4,
+//               a longer average (alpha 0.03, cap 64). It keeps a one-frame outlier in its
+//               history far longer than the filtered feedback does, which is why it is not yet
+//               the default (issue 12: anti-lag).
+// Throws std::invalid_argument naming the choices.
+inline SvgfParams svgf_preset(const std::string& name) {
+  SvgfParams p;
+  if (name == "default" || name == "falcor") return p;
+  if (name == "paper") {
+    p.iterations = 5;
+    p.feedback_tap = 0;
+    p.phi_color = 4.f;
+    p.alpha = 0.2f;
+    p.moments_alpha = 0.2f;
+    return p;
+  }
+  if (name == "converge") {
+    p.feedback_tap = -1;
+    p.variance_of_mean = true;
+    p.phi_color = 4.f;
+    p.alpha = 0.03f;
+    p.history_cap = 64;
+    return p;
+  }
+  throw std::invalid_argument("svgf: --svgf-preset must be default, falcor, paper or converge, got '" +
+                              name + "'");
+}
 
 // Fixed numbers of the method, not tunables. Functions rather than constexpr arrays, because a
 // namespace-scope array cannot be indexed from device code.

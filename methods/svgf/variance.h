@@ -11,6 +11,30 @@
 
 namespace svgf {
 
+// The variance of the accumulated color, from the per-sample luminance variance the moments
+// estimate. The moments measure one sample's spread; the accumulated color averages about
+// n = min(history, (2 - alpha) / alpha) samples (a mean of `history` frames, then an exponential
+// average whose steady state has the variance of (2 - alpha) / alpha samples), so its variance
+// is the sample variance / n. With variance_of_mean off it is the sample variance (the paper,
+// Falcor): the filter then stays as strong on a 32-frame history as on a 1-frame one.
+SVGF_HD float variance_of_mean_scale(const SvgfParams& p, float history) {
+  if (!p.variance_of_mean) return 1.f;
+  const float n = min_f(history, (2.f - p.alpha) / p.alpha);
+  return n > 1.f ? 1.f / n : 1.f;
+}
+
+// The variance a pixel of `history` frames passes on, from its temporal estimate.
+SVGF_HD float temporal_variance(const SvgfParams& p, float variance, float history) {
+  return variance * variance_of_mean_scale(p, history);
+}
+
+// The variance from the 7x7 spatial moments m1, m2 of a young history, boosted by
+// spatial_variance_history / history because so few frames back it (Falcor).
+SVGF_HD float spatial_variance(const SvgfParams& p, float m1, float m2, float history) {
+  return max_f(0.f, m2 - m1 * m1) * (static_cast<float>(p.spatial_variance_history) / history) *
+         variance_of_mean_scale(p, history);
+}
+
 template <class Flavor, class Power = NormalPower<typename Flavor::Arith>,
           class Out = typename Flavor::Signal>
 struct VarianceEstimate {
@@ -29,7 +53,7 @@ struct VarianceEstimate {
     const Vec3 center_color = accumulated.color.load(i);
     const DepthNormal gc = guides.depth_normal(i);
     if (!(h < static_cast<float>(params.spatial_variance_history)) || !(gc.depth > 0.f)) {
-      out.store(i, make_color_var(center_color, accumulated.variance[i]));
+      out.store(i, make_color_var(center_color, temporal_variance(params, accumulated.variance[i], h)));
       return;
     }
     const EdgeSample c{gc.depth, gc.normal, luminance_with<Arith>(center_color)};
@@ -60,9 +84,7 @@ struct VarianceEstimate {
     }
     const auto by_weight = Arith::divide_by(max_f(weight_sum, 1e-6f));
     const Vec2 m = by_weight(moments_sum);
-    out.store(i, make_color_var(by_weight(color_sum),
-                                max_f(0.f, m.y - m.x * m.x) *
-                                    (static_cast<float>(params.spatial_variance_history) / h)));
+    out.store(i, make_color_var(by_weight(color_sum), spatial_variance(params, m.x, m.y, h)));
   }
 };
 
