@@ -15,6 +15,10 @@ const char* const kMethodParamUsage =
     "  --phi-color X             svgf: luminance edge-stopping (default 10)\n"
     "  --history-cap N           svgf: longest history in frames (default 32)\n"
     "  --variance-of-mean on|off svgf: filter with the accumulated mean's variance (default off)\n"
+    "  --antilag on|off          svgf: shorten a history its 3x3 neighbourhood contradicts (default off)\n"
+    "  --antilag-low D           svgf: ... from D standard errors away (default 3)\n"
+    "  --antilag-high D          svgf: ... all of it from D on (default 6)\n"
+    "  --antilag-relative R      svgf: ... tolerance + R x luminance (default 0.05)\n"
     "  --svgf-preset NAME        svgf: default, falcor, paper or converge, set before the flags\n"
     "                            above (docs/svgf.md)\n"
     "  --phi-normal X            svgf: normal edge-stopping exponent (default 128)\n"
@@ -58,6 +62,10 @@ const std::map<std::string, std::vector<std::string>>& readers() {
       {"variance-of-mean", {"svgf"}},
       {"history-cap", {"svgf"}},
       {"svgf-preset", {"svgf"}},
+      {"antilag", {"svgf"}},
+      {"antilag-low", {"svgf"}},
+      {"antilag-high", {"svgf"}},
+      {"antilag-relative", {"svgf"}},
 
       {"sigma", {"gaussian"}},
       {"radius", {"gaussian"}},
@@ -113,6 +121,10 @@ void read_method_params(const Options& o, DenoiserConfig& c) {
   p.phi_color = o.get_float("phi-color", p.phi_color);
   p.phi_normal = o.get_float("phi-normal", p.phi_normal);
   p.phi_depth = o.get_float("phi-depth", p.phi_depth);
+  p.antilag = o.get_on_off("antilag", p.antilag);
+  p.antilag_low = o.get_float("antilag-low", p.antilag_low);
+  p.antilag_high = o.get_float("antilag-high", p.antilag_high);
+  p.antilag_relative = o.get_float("antilag-relative", p.antilag_relative);
   p.history_cap = o.get_int("history-cap", p.history_cap, 1, 4096);
   p.variance_of_mean = o.get_on_off("variance-of-mean", p.variance_of_mean);
   GaussianParams& g = c.gaussian;

@@ -28,6 +28,8 @@ std::string params_key(const DenoiserConfig& d) {
       unless_default("pc", p.phi_color, def.phi_color);
       unless_default("pn", p.phi_normal, def.phi_normal);
       unless_default("pd", p.phi_depth, def.phi_depth);
+      unless_default("cap", static_cast<float>(p.history_cap), static_cast<float>(def.history_cap));
+      if (p.variance_of_mean != def.variance_of_mean) s << (p.variance_of_mean ? " vom" : " novom");
       break;
     }
     case Method::Wavelet: {
@@ -82,7 +84,8 @@ json params_json(const DenoiserConfig& d) {
       return {{"iterations", p.iterations}, {"feedback_tap", p.feedback_tap},
               {"alpha", p.alpha},           {"moments_alpha", p.moments_alpha},
               {"phi_color", p.phi_color},   {"phi_normal", p.phi_normal},
-              {"phi_depth", p.phi_depth}};
+              {"phi_depth", p.phi_depth},   {"history_cap", p.history_cap},
+              {"variance_of_mean", p.variance_of_mean}};
     }
     case Method::Wavelet: {
       const WaveletParams& p = d.wavelet;

@@ -36,6 +36,12 @@ struct ReprojectRig {
     k.guides = r.guides(cur_frame);
     k.prev_guides = r.guides(prev_frame);
     k.illumination = r.rgb(std::as_const(illum));
+    // The anti-lag demodulates the neighbours again: the frame's color over an albedo of 1 is
+    // the illumination.
+    cur_frame.albedo = Image(w, h, 3, 1.f);
+    cur_frame.color = illum;
+    k.color = r.rgb(std::as_const(cur_frame.color));
+    k.albedo = r.rgb(std::as_const(cur_frame.albedo));
     k.prev_color = r.rgb(std::as_const(prev_color));
     k.prev_moment1 = r.plane(std::as_const(moments_prev), 0);
     k.prev_moment2 = r.plane(std::as_const(moments_prev), 1);
@@ -99,6 +105,44 @@ void static_sequence_accumulates_mean(const TestDevice& d) {
   // Past history 1/alpha = 20 the blend factor stops at alpha.
   for (int k = 4; k < 40; ++k) rig.step();
   REQUIRE(rig.history.plane(0)[0] == float(rig.params.history_cap));
+}
+
+// Issue 12, item 3's fallback: a history that disagrees with this frame's 3x3 neighbourhood
+// loses a share of its length. A constant frame has no spread, so the tolerance is
+// antilag_relative * max(history, neighbourhood) luminance and the answers are exact.
+void antilag_shortens_contradicted_history(const TestDevice& d) {
+  const auto run = [&](bool antilag, float planted) {
+    ReprojectRig rig(d, 9, 9);
+    rig.params.antilag = antilag;
+    rig.params.antilag_relative = 0.1f;  // low 3, high 6
+    rig.illum = Image(9, 9, 3, 1.f);
+    for (int k = 0; k < 4; ++k) rig.step();  // history 4 of a grey 1 everywhere
+    for (int c = 0; c < 3; ++c) rig.prev_color.at(4, 4, c) = planted;
+    rig.step();
+    return rig;
+  };
+  // An outlier (50x): |50 - 1| / (0.1 * 50) = 9.8 >= 6, all dropped: the pixel restarts.
+  const ReprojectRig outlier = run(true, 50.f);
+  REQUIRE(outlier.history.at(4, 4, 0) == 1.f);
+  for (int c = 0; c < 3; ++c) REQUIRE(outlier.accumulated.at(4, 4, c) == 1.f);
+  REQUIRE(outlier.moments.at(4, 4, 0) == luminance(make_vec3(1.f, 1.f, 1.f)));
+  // Its neighbours agree with the frame (the outlier is in the history, not in this frame's
+  // samples): they keep their history.
+  REQUIRE(outlier.history.at(3, 4, 0) == 5.f);
+  REQUIRE(outlier.history.at(0, 0, 0) == 5.f);
+  // Off, the outlier stays and is blended in at 1/5.
+  const ReprojectRig kept = run(false, 50.f);
+  REQUIRE(kept.history.at(4, 4, 0) == 5.f);
+  REQUIRE(kept.accumulated.at(4, 4, 0) == Approx(50.0 + (1.0 - 50.0) / 5.0));
+  // Part of the way: |1.5 - 1| / (0.1 * 1.5) = 3.33, so 1/9 of the history goes: length
+  // 4 * 8/9 + 1 = 4.556, alpha 1 / 4.556, color 1.5 + (1 - 1.5) / 4.556.
+  const ReprojectRig partial = run(true, 1.5f);
+  const double drop = (0.5 / 0.15 - 3.0) / 3.0;
+  const double length = 4.0 * (1.0 - drop) + 1.0;
+  REQUIRE(partial.history.at(4, 4, 0) == Approx(length).epsilon(1e-5));
+  REQUIRE(partial.accumulated.at(4, 4, 0) == Approx(1.5 - 0.5 / length).epsilon(1e-5));
+  // Below antilag_low nothing changes: |1.2 - 1| / 0.12 = 1.67.
+  REQUIRE(run(true, 1.2f).history.at(4, 4, 0) == 5.f);
 }
 
 void disocclusion_restarts_history(const TestDevice& d) {
@@ -312,6 +356,8 @@ SVGF_BACKEND_TEST("reproject: the first frame starts a history of length 1",
                   "[reproject]", first_frame_starts_history)
 SVGF_BACKEND_TEST("reproject: a static 4-frame sequence accumulates to the exact mean",
                   "[reproject]", static_sequence_accumulates_mean)
+SVGF_BACKEND_TEST("reproject: the anti-lag shortens a history the frame's neighbourhood contradicts",
+                  "[reproject][antilag]", antilag_shortens_contradicted_history)
 SVGF_BACKEND_TEST("reproject: a disoccluded pixel restarts its history",
                   "[reproject]", disocclusion_restarts_history)
 SVGF_BACKEND_TEST("reproject: depth and normal changes reject the history",

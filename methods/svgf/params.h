@@ -24,6 +24,17 @@ struct SvgfParams {
   // deviations before it enters the color (methods/svgf/reproject.h); 0: no clamp.
   float outlier_sigma = 4.f;
 
+  // Anti-lag from the history's disagreement with this frame (methods/svgf/reproject.h): a
+  // history whose luminance lies more than antilag_low standard errors from its 3x3
+  // neighbourhood's mean loses a share of its length, all of it from antilag_high on.
+  // antilag_relative (of the luminance, at least antilag_floor) widens the tolerance for the
+  // bias reprojection and filtering leave.
+  bool antilag = false;
+  float antilag_low = 3.f;
+  float antilag_high = 6.f;
+  float antilag_relative = 0.05f;
+  float antilag_floor = 1e-3f;
+
   // Reprojection tap tests. A tap is kept when its mesh id matches, its world normals agree to
   // within reproject_normal_cos, and |z - z_prev| <= scale * fwidth(z) + relative * z.
   float reproject_depth_gradient_scale = 10.f;
@@ -82,6 +93,13 @@ struct SvgfParams {
       fail("albedo_epsilon must be in (0, 1], got " + std::to_string(albedo_epsilon));
     if (history_cap < 1 || history_cap > 4096)
       fail("--history-cap must be in [1, 4096], got " + std::to_string(history_cap));
+    at_least(antilag_low, 0.f, "--antilag-low");
+    if (!(std::isfinite(antilag_high) && antilag_high > antilag_low))
+      fail("--antilag-high must be finite and > --antilag-low (" + std::to_string(antilag_low) +
+           "), got " + std::to_string(antilag_high));
+    at_least(antilag_relative, 0.f, "--antilag-relative");
+    if (!(std::isfinite(antilag_floor) && antilag_floor > 0.f))
+      fail("antilag_floor must be finite and > 0, got " + std::to_string(antilag_floor));
     at_least(reproject_depth_gradient_scale, 0.f, "reproject_depth_gradient_scale");
     at_least(reproject_depth_relative, 0.f, "reproject_depth_relative");
     if (!(reproject_normal_cos >= -1.f && reproject_normal_cos <= 1.f))

@@ -93,6 +93,9 @@ inline ReprojectKernel reproject_kernel_for(const SvgfFrameBuffers& b, const Svg
   k.guides = b.guides;
   k.prev_guides = b.prev_guides;
   k.illumination = b.illumination;
+  k.color = b.color;
+  k.albedo = b.albedo;
+  k.emission = b.emission;
   k.prev_color = b.prev_color;
   k.prev_moment1 = b.prev_moment1;
   k.prev_moment2 = b.prev_moment2;

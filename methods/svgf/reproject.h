@@ -7,8 +7,10 @@
 // history restarts at length 1 (disocclusion).
 #include <cmath>
 
+#include "core/arith.h"
 #include "core/bilinear_taps.h"
 #include "core/hd.h"
+#include "core/modulation.h"
 #include "methods/svgf/params.h"
 #include "core/views.h"
 
@@ -18,6 +20,11 @@ struct ReprojectKernel {
   GuideView guides;           // this frame
   GuideView prev_guides;      // the previous frame's depth, normal and mesh id
   ConstRgbView illumination;  // this frame, demodulated
+  // This frame's inputs, for the anti-lag's neighbourhood (demodulated again where it reads a
+  // neighbour, so the stage needs nothing that another pixel of the same launch writes).
+  ConstRgbView color;
+  ConstRgbView albedo;
+  ConstRgbView emission;  // optional
   // History, as the previous frame left it.
   ConstRgbView prev_color;    // the feedback tap of the previous frame's a-trous
   const float* prev_moment1 = nullptr;  // E[l]
@@ -102,11 +109,59 @@ struct ReprojectKernel {
     return h;
   }
 
+  // Anti-lag without gradient samples (issue 12, item 3's fallback): how far the history's
+  // luminance lies from this frame's 3x3 neighbourhood on the same mesh, in standard errors of
+  // the difference of the two means (the neighbourhood's sample variance / count, and / length
+  // for the history), plus antilag_relative of the larger luminance for the bias any
+  // reprojection and filter leave. A still pixel whose history is right lies about 1 away; a
+  // moved shadow, a light switched off or a history holding a one-frame outlier lies far out.
+  SVGF_HD float history_discrepancy(int x, int y, int i, float l, const History& h) const {
+    float n = 0.f, sum = 0.f, sum_sq = 0.f;
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int xq = x + dx, yq = y + dy;
+        if (!guides.inside(xq, yq)) continue;
+        const int j = guides.index(xq, yq);
+        if (guides.mesh_id[j] != guides.mesh_id[i] || !guides.is_surface(j)) continue;
+        const float lq = j == i ? l
+                                : luminance(demodulated(color.load(j), emission.load_or_zero(j),
+                                                        albedo.load(j), params.albedo_epsilon));
+        n = n + 1.f;
+        sum = sum + lq;
+        sum_sq = sum_sq + lq * lq;
+      }
+    const float mean = sum / n;
+    // Unbiased sample variance (n - 1); one sample alone gives no spread, only the tolerance.
+    const float spread = n > 1.f ? max_f(0.f, sum_sq - sum * mean) / (n - 1.f) : 0.f;
+    const float l_history = luminance(h.color);
+    // The history is a mean of `length` samples of the same spread. (Its own moments would
+    // count an outlier it holds as spread, and hide it.)
+    const float tolerance =
+        ExactArith::sqrt(spread / n + spread / max_f(h.length, 1.f)) +
+        params.antilag_relative * max_f(max_f(l_history, mean), params.antilag_floor);
+    return abs_f(l_history - mean) / tolerance;
+  }
+
+  // The share of the history the anti-lag drops: 0 up to antilag_low, 1 from antilag_high.
+  SVGF_HD float antilag_drop(int x, int y, int i, float l, const History& h) const {
+    if (!params.antilag) return 0.f;
+    const float d = history_discrepancy(x, y, i, l, h);
+    if (!(d > params.antilag_low)) return 0.f;
+    return min_f(1.f, (d - params.antilag_low) / (params.antilag_high - params.antilag_low));
+  }
+
   SVGF_HD void operator()(int x, int y) const {
     const int i = guides.index(x, y);
     const Vec3 c = illumination.load(i);
     const float l = luminance(c);
-    const History h = read_history(x, y, i);
+    History h = read_history(x, y, i);
+    // A history the frame contradicts counts for fewer frames, so the new sample weighs more;
+    // all of it dropped, the pixel restarts as after a disocclusion.
+    if (h.valid) {
+      const float drop = antilag_drop(x, y, i, l, h);
+      h.length = h.length * (1.f - drop);
+      if (!(h.length > 0.f)) h.valid = false;
+    }
     const float length =
         h.valid ? min_f(h.length + 1.f, static_cast<float>(params.history_cap)) : 1.f;
     // With history h, alpha = 1/h makes the first frames an equal-weight mean.
