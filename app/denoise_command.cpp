@@ -14,8 +14,8 @@
 #include "app/interrupt.h"
 #include "app/method_options.h"
 #include "app/options.h"
-#include "app/progress_bar.h"
 #include "app/run_report.h"
+#include "cli/progress_bar.h"
 #include "pipeline/make_denoiser.h"
 #include "core/tonemap.h"
 #include "io/exr_frame.h"
@@ -204,7 +204,7 @@ void run(const RunSettings& s, Denoiser& denoiser, RunProgress& progress) {
 
   RunReport report(s.in_dir, sequence.manifest().scene, sequence.manifest().width,
                    sequence.manifest().height, denoiser.description());
-  ProgressBar bar("denoise", frames);
+  cli::ProgressBar bar("denoise", frames);
   Image out;
   progress.stage = "denoising";
   Camera previous_camera;

@@ -51,15 +51,12 @@ void generate_one(const Renderer& renderer, const Job& job, const fs::path& out)
   RenderCounters counters;
   double render_s = 0.0, total_s = 0.0;
   {
-    Progress progress(scene.name, static_cast<uint64_t>(job.frames) * job.settings.height,
-                      counters);
-    progress.set_frame(0, job.frames);
+    Progress progress(scene.name, job.frames, job.settings.height, counters);
     for (int k = 0; k < job.frames; ++k) {
       const double t0 = progress.seconds();
       const Frame f = renderer.render(scene, k, job.settings, &counters);
       render_s += progress.seconds() - t0;
       writer.add(f);
-      progress.set_frame(k + 1, job.frames);
     }
     writer.commit(m);
     total_s = progress.seconds();

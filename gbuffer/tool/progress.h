@@ -1,34 +1,31 @@
 #pragma once
-// A progress bar on stderr, redrawn by its own thread from the renderer's atomic counters, with
-// the achieved rays per second. It also forwards SIGINT to the renderer (counters.cancel).
+// Feeds the tools' shared progress bar (cli/progress_bar.h) from the renderer's atomic counters:
+// its own thread polls them 10 times a second, shows the frames rendered (a frame partly
+// rendered counts in part) and the rays per second so far, and forwards SIGINT to the renderer
+// (counters.cancel).
 #include <atomic>
-#include <chrono>
 #include <cstdint>
 #include <string>
 #include <thread>
-#include <utility>
 
+#include "cli/progress_bar.h"
 #include "gbuffer/renderer.h"
 
 namespace svgf::gbuffer::tool {
 
 class Progress {
  public:
-  // `total_rows`: rows of all frames of the task; `label`: e.g. the scene name.
-  Progress(std::string label, uint64_t total_rows, RenderCounters& counters);
-  ~Progress();  // stops the display thread and ends the line
-  void set_frame(int done, int total) { frame_done_ = done; frame_total_ = total; }
-  double seconds() const;
+  // `frames` of `rows_per_frame` rows each; `label`: e.g. the scene name.
+  Progress(std::string label, int frames, int rows_per_frame, RenderCounters& counters);
+  ~Progress();  // stops the polling thread and draws the last line
+  double seconds() const { return bar_.seconds(); }
 
  private:
-  void draw(bool final);
-  std::string label_;
-  uint64_t total_rows_;
+  void show();
+  int rows_per_frame_;
   RenderCounters& counters_;  // cancel is set here when the user interrupts
-  std::atomic<int> frame_done_{0}, frame_total_{0};
+  cli::ProgressBar bar_;
   std::atomic<bool> stop_{false};
-  bool tty_;
-  std::chrono::steady_clock::time_point start_;
   std::thread thread_;
 };
 

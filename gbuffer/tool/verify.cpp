@@ -77,15 +77,13 @@ int verify_one(const Renderer& renderer, const fs::path& dir, const VerifyOption
   RenderCounters counters;
   double seconds = 0.0;
   {
-    Progress progress(m.scene, static_cast<uint64_t>(frames) * settings.height, counters);
-    progress.set_frame(0, frames);
+    Progress progress(m.scene, frames, settings.height, counters);
     for (int k = 0; k < frames; ++k) {
       const Frame stored = seq.read(k);
       const Frame fresh = renderer.render(*scene, k, settings, &counters);
       if (stored.index != k) report(seq.path(k), "frame number " + std::to_string(stored.index));
       for (const ChannelDiff& d : compare_frames(stored, fresh, fixture_storage(), copt))
         report(seq.path(k), describe(d));
-      progress.set_frame(k + 1, frames);
     }
     seconds = progress.seconds();
   }
