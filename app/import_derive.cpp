@@ -109,29 +109,49 @@ Image depth_from_position(const Image& position, const std::vector<uint32_t>& me
 
 Image position_from_depth(const Image& depth, const std::vector<uint32_t>& mesh_id,
                           const SceneMatrices& m) {
-  Matrix4 screen_to_world;
-  if (!invert(m.world_to_screen, screen_to_world))
-    throw std::invalid_argument("world->screen matrix is singular: positions cannot be "
-                                "reconstructed from depth (give a position buffer)");
+  const Matrix4& S = m.world_to_screen;
+  const Matrix4& V = m.world_to_camera;
   const int w = depth.width(), h = depth.height();
   Image pos(w, h, 3);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const size_t i = static_cast<size_t>(y) * w + x;
       if (!is_surface(mesh_id, i)) continue;
-      // Two points on the pixel centre's ray (screen z 0 and 1), in world space.
-      double ends[2][3];
-      for (int k = 0; k < 2; ++k) {
-        const double s[3] = {x + 0.5, y + 0.5, double(k)};
-        const auto q = transform(screen_to_world, s);
-        for (int c = 0; c < 3; ++c) ends[k][c] = q[c] / q[3];
+      // P = (X, Y, Z, 1) projects to the pixel centre (sx, sy): (S0 - sx S3) . P = 0 and
+      // (S1 - sy S3) . P = 0; and its camera z is +-depth. Of the two signs, the point in
+      // front of the camera (screen w > 0) is the one.
+      const double sx = x + 0.5, sy = y + 0.5;
+      double a[3][4];
+      for (int c = 0; c < 4; ++c) {
+        a[0][c] = S[c] - sx * S[12 + c];
+        a[1][c] = S[4 + c] - sy * S[12 + c];
+        a[2][c] = V[8 + c];
       }
-      const double za = transform(m.world_to_camera, ends[0])[2];
-      const double zb = transform(m.world_to_camera, ends[1])[2];
-      const double forward = za != 0.0 ? (za > 0 ? 1.0 : -1.0) : (zb > 0 ? 1.0 : -1.0);
-      const double t = (forward * depth.plane(0)[i] - za) / (zb - za);
-      for (int c = 0; c < 3; ++c)
-        pos.plane(c)[i] = static_cast<float>(ends[0][c] + t * (ends[1][c] - ends[0][c]));
+      const auto det3 = [](double m00, double m01, double m02, double m10, double m11, double m12,
+                           double m20, double m21, double m22) {
+        return m00 * (m11 * m22 - m12 * m21) - m01 * (m10 * m22 - m12 * m20) +
+               m02 * (m10 * m21 - m11 * m20);
+      };
+      const double det = det3(a[0][0], a[0][1], a[0][2], a[1][0], a[1][1], a[1][2], a[2][0],
+                              a[2][1], a[2][2]);
+      if (!(std::fabs(det) > 1e-300))
+        throw std::invalid_argument("the pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+                                    ")'s ray runs along the camera plane: positions cannot be "
+                                    "reconstructed from depth (give a position buffer)");
+      for (double sign : {-1.0, 1.0}) {
+        const double b[3] = {-a[0][3], -a[1][3], sign * depth.plane(0)[i] - a[2][3]};
+        double p[3];  // Cramer's rule
+        for (int k = 0; k < 3; ++k) {
+          double m[3][3];
+          for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c) m[r][c] = c == k ? b[r] : a[r][c];
+          p[k] = det3(m[0][0], m[0][1], m[0][2], m[1][0], m[1][1], m[1][2], m[2][0], m[2][1],
+                      m[2][2]) / det;
+        }
+        if (transform(S, p)[3] > 0 || sign > 0)
+          for (int c = 0; c < 3; ++c) pos.plane(c)[i] = static_cast<float>(p[c]);
+        if (transform(S, p)[3] > 0) break;
+      }
     }
   return pos;
 }

@@ -32,9 +32,10 @@ Image depth_gradient_from_depth(const Image& depth, const std::vector<uint32_t>&
 Image depth_from_position(const Image& position, const std::vector<uint32_t>& mesh_id,
                           const Matrix4& world_to_camera);
 
-// World positions of the surface pixels from linear view depth: the point on the pixel centre's
-// ray (through world_to_screen's inverse) whose |z_camera| is the depth. Throws
-// std::invalid_argument when world_to_screen or world_to_camera is singular.
+// World positions of the surface pixels from linear view depth: the point that world_to_screen
+// projects to the pixel centre, in front of the camera (screen w > 0), whose |z_camera| is the
+// depth (camera space may look down -z or +z). Throws std::invalid_argument when a pixel's ray
+// lies in the camera's z = const plane (a degenerate matrix).
 Image position_from_depth(const Image& depth, const std::vector<uint32_t>& mesh_id,
                           const SceneMatrices& m);
 
