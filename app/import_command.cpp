@@ -251,8 +251,8 @@ int import_command(const std::vector<std::string>& args) {
     writer.commit(m);
     for (const std::string& w : notes.warnings)
       std::fprintf(stderr, "svgf: warning: %s\n", io::printable(w).c_str());
-    std::fprintf(stderr, "svgf: imported %zu frames into %s (what was derived: %s)\n",
-                 run.frames.size(), io::printable(run.out_dir).c_str(),
+    std::fprintf(stderr, "svgf: imported %zu frame%s into %s (what was derived: %s)\n",
+                 run.frames.size(), run.frames.size() == 1 ? "" : "s", io::printable(run.out_dir).c_str(),
                  io::printable((fs::path(run.out_dir) / kReportName).string()).c_str());
     return 0;
   } catch (const Interrupted& e) {
