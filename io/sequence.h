@@ -67,6 +67,9 @@ class SequenceWriter {
   SequenceWriter(const std::string& dir, const FrameStorage& storage);
   void add(const Frame& frame);  // written as frame_file_name(number of frames added so far)
   void commit(Manifest manifest);
+  // The staging folder, for files that belong with the sequence (svgf import's import.json):
+  // they are swapped in with it.
+  const std::string& staging_dir() const { return folder_.path(); }
 
  private:
   StagedFolder folder_;
