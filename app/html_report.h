@@ -12,11 +12,13 @@ namespace svgf::app {
 inline constexpr const char* kReportHtml = "report.html";
 
 // Frames that carry images in a page: all of them up to this many, else this many evenly spaced
-// (html_frame_has_images). Bounds the page's size: a 480-pixel image set is about 0.5 MB.
+// (html_frame_has_images).
 inline constexpr int kHtmlMaxImageFrames = 64;
-// Embedded images are box-downscaled by a whole factor to at most this many pixels on their
-// longer side (app/report_images.h).
-inline constexpr int kHtmlMaxImageSide = 480;
+// Embedded images are box-downscaled by the smallest whole factor that leaves at most this many
+// pixels (1080p: by 6 to 320 x 180; app/report_images.h). With the frame limit it bounds a page:
+// an image set of 1-spp noise takes about 9 bytes a pixel as base64, so 0.6 MB a frame, 40 MB
+// for 64 frames.
+inline constexpr int kHtmlMaxImagePixels = 256 * 256;
 
 struct HtmlImage {
   std::string name;  // "noisy", "denoised", "reference", "FLIP error"

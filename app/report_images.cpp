@@ -21,12 +21,20 @@ const Rgb kMagma[] = {{0, 0, 4},       {28, 16, 68},    {79, 18, 123},
                       {129, 37, 129},  {181, 54, 122},  {229, 80, 100},
                       {251, 135, 97},  {254, 194, 135}, {252, 253, 191}};
 
+// The smallest whole factor that leaves `image` at most kHtmlMaxImagePixels pixels.
+int downscale_factor(const Image& image) {
+  int factor = 1;
+  auto pixels = [&](int f) {
+    return int64_t{(image.width() + f - 1) / f} * ((image.height() + f - 1) / f);
+  };
+  while (pixels(factor) > kHtmlMaxImagePixels) ++factor;
+  return factor;
+}
+
 // The first `channels` channels of `image`, averaged over factor x factor boxes (the last row
-// and column of boxes may be cut by the image's edge) so that neither side exceeds
-// kHtmlMaxImageSide.
+// and column of boxes may be cut by the image's edge), factor = downscale_factor(image).
 Image downscaled(const Image& image, int channels) {
-  const int side = std::max(image.width(), image.height());
-  const int factor = (side + kHtmlMaxImageSide - 1) / kHtmlMaxImageSide;
+  const int factor = downscale_factor(image);
   if (factor <= 1) return image.channels_from(0, channels);
   const int w = (image.width() + factor - 1) / factor, h = (image.height() + factor - 1) / factor;
   Image out(w, h, channels);
@@ -88,12 +96,25 @@ HtmlColourBar error_map_colour_bar() {
   return bar;
 }
 
+Image preview_flip_map(const Image& test, const Image& reference) {
+  const int factor = downscale_factor(test);
+  if (factor == 1) return metrics::flip_map(test, reference);
+  auto clamped = [](const Image& image) {  // as flip_map does before anything else
+    Image c = image.channels_from(0, 3);
+    for (float& v : c.data()) v = std::isnan(v) ? 0.f : std::min(1.f, std::max(0.f, v));
+    return downscaled(c, 3);
+  };
+  metrics::FlipOptions observer;
+  observer.pixels_per_degree /= factor;
+  return metrics::flip_map(clamped(test), clamped(reference), observer);
+}
+
 std::vector<HtmlImage> denoise_images(const Frame& in, const Image& out, float exposure) {
   std::vector<HtmlImage> images{preview_image("noisy", in.color, exposure),
                                 preview_image("denoised", out, exposure)};
   if (in.has_reference()) {
     images.push_back(preview_image("reference", in.reference, exposure));
-    images.push_back(error_map_image("FLIP error", metrics::flip_map(out, in.reference)));
+    images.push_back(error_map_image("FLIP error", preview_flip_map(out, in.reference)));
   }
   return images;
 }

@@ -1,5 +1,6 @@
 // report.html: the page's structure (frames, embedded images, plot points, escaping), its
 // images, and that svgf denoise and svgf compare write it. tests/app_browser_test.cpp renders it.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
@@ -13,6 +14,7 @@
 #include "app/html_report.h"
 #include "app/report_images.h"
 #include "core/tonemap.h"
+#include "metrics/flip.h"
 #include "io/png.h"
 #include "app_test_support.h"
 #include "html_page_support.h"
@@ -151,13 +153,14 @@ TEST_CASE("html_frame_has_images: every frame up to the limit, then the limit sp
 
 TEST_CASE("report images: the previews' tonemap, downscaled to the limit; the error colour scale",
           "[app][html]") {
-  Image flat(1000, 10, 3, 0.25f);  // ceil(1000 / 480) = 3: 334 x 4
+  Image flat(301, 300, 3, 0.25f);  // 90300 pixels: halved, the last column of boxes cut
   const io::Rgb8Image preview =
       io::decode_png_rgb8(app::preview_image("p", flat, 1.f).png, "preview");
-  CHECK(preview.width == 334);
-  CHECK(preview.height == 4);
+  CHECK(preview.width == 151);
+  CHECK(preview.height == 150);
+  CHECK(io::decode_png_rgb8(app::preview_image("p", Image(1920, 1080, 3), 1.f).png, "1080p").width == 320);
   const uint8_t want = tonemap_channel(0.25f, 1.f);
-  for (uint8_t v : preview.rgb) REQUIRE(v == want);
+  CHECK(std::count(preview.rgb.begin(), preview.rgb.end(), want) == std::ptrdiff_t(preview.rgb.size()));
   Image small(6, 2, 3, 0.f);  // under the limit: kept as is
   small.at(5, 1, 0) = 1.f;
   const io::Rgb8Image kept = io::decode_png_rgb8(app::preview_image("s", small, 2.f).png, "kept");
@@ -173,6 +176,15 @@ TEST_CASE("report images: the previews' tonemap, downscaled to the limit; the er
   CHECK(std::vector<uint8_t>(colours.rgb.begin() + 3, colours.rgb.begin() + 6) ==
         std::vector<uint8_t>{252, 253, 191});
   CHECK(std::vector<uint8_t>(colours.rgb.begin() + 6, colours.rgb.end()) == std::vector<uint8_t>{0, 0, 4});
+  // FLIP of the previews: the map itself up to the limit; beyond, of the downscaled images for an
+  // observer scaled alike, which for flat images is the full map's value.
+  Image grey(301, 300, 3, 0.2f), light(301, 300, 3, 0.6f);
+  const Image full = metrics::flip_map(grey, light), half = app::preview_flip_map(grey, light);
+  CHECK(half.width() == 151);
+  CHECK(half.at(70, 70, 0) == Approx(full.at(140, 140, 0)).epsilon(1e-5));
+  const Image small_grey(6, 2, 3, 0.2f);
+  CHECK(app::preview_flip_map(small, small_grey).data() == metrics::flip_map(small, small_grey).data());
+
   const app::HtmlColourBar bar = app::error_map_colour_bar();
   CHECK(bar.colours.front() == "#000004");
   CHECK(bar.colours.back() == "#fcfdbf");
