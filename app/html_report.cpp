@@ -10,6 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/html_report_assets.h"
+
 namespace svgf::app {
 namespace {
 
@@ -58,16 +60,16 @@ std::string svg_plot(const HtmlPlot& plot, const std::vector<std::string>& frame
         data_lo = std::min(data_lo, p);
         data_hi = std::max(data_hi, p);
       }
-  const double pad = data_hi > data_lo ? 0.05 * (data_hi - data_lo)
-                                       : std::max(1e-9, 0.05 * std::fabs(data_lo));
+  const double pad =
+      data_hi > data_lo ? 0.05 * (data_hi - data_lo) : std::max(1e-9, 0.05 * std::fabs(data_lo));
   const double lo = data_lo - pad, hi = data_hi + pad;
   const double bottom = kPlotHeight - kBottom;
   auto y_of = [&](double p) { return bottom - (p - lo) / (hi - lo) * (bottom - kTop); };
   auto label_of = [&](double p) { return number(plot.log_scale ? std::pow(10.0, p) : p, 4); };
 
   std::ostringstream o;
-  o << "<svg class=\"plot\" xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 " << kPlotWidth << ' '
-    << kPlotHeight << "\" width=\"" << kPlotWidth << "\" height=\"" << kPlotHeight
+  o << "<svg class=\"plot\" xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 " << kPlotWidth
+    << ' ' << kPlotHeight << "\" width=\"" << kPlotWidth << "\" height=\"" << kPlotHeight
     << "\" data-frames=\"" << n << "\" data-x0=\"" << coord(frame_x(0, n)) << "\" data-x1=\""
     << coord(frame_x(n - 1, n)) << "\" role=\"img\" aria-label=\"" << html_escape(plot.title)
     << "\">\n";
@@ -108,8 +110,10 @@ std::string svg_plot(const HtmlPlot& plot, const std::vector<std::string>& frame
     };
     for (int k = 0; k < n; ++k) {
       const double p = plotted(series.values[static_cast<size_t>(k)], plot.log_scale);
-      if (std::isfinite(p)) run.emplace_back(frame_x(k, n), y_of(p));
-      else flush();
+      if (std::isfinite(p))
+        run.emplace_back(frame_x(k, n), y_of(p));
+      else
+        flush();
     }
     flush();
   }
@@ -142,9 +146,9 @@ std::string frame_images(const std::vector<HtmlImage>& images, int k, const std:
   if (images.empty())
     o << "<p class=\"none\">No images embedded for this frame. " << html_escape(note) << "</p>";
   for (const HtmlImage& im : images)
-    o << "<figure><img data-name=\"" << html_escape(im.name) << "\" alt=\""
-      << html_escape(im.name) << "\" src=\"data:image/png;base64," << base64(im.png)
-      << "\"><figcaption>" << html_escape(im.name) << "</figcaption></figure>";
+    o << "<figure><img data-name=\"" << html_escape(im.name) << "\" alt=\"" << html_escape(im.name)
+      << "\" src=\"data:image/png;base64," << base64(im.png) << "\"><figcaption>"
+      << html_escape(im.name) << "</figcaption></figure>";
   o << "</div>\n";
   return o.str();
 }
@@ -152,7 +156,8 @@ std::string frame_images(const std::vector<HtmlImage>& images, int k, const std:
 std::string colour_bar(const HtmlColourBar& bar) {
   if (bar.colours.empty()) return "";
   std::ostringstream o;
-  o << "<div class=\"colour-bar\"><span>" << html_escape(bar.label) << ": 0</span><span class=\"bar\" "
+  o << "<div class=\"colour-bar\"><span>" << html_escape(bar.label)
+    << ": 0</span><span class=\"bar\" "
     << "style=\"background:linear-gradient(to right";
   for (const std::string& c : bar.colours) o << ',' << html_escape(c);
   o << ")\"></span><span>1</span></div>\n";
@@ -190,138 +195,6 @@ std::string data_json(const HtmlReport& r) {
   return text;
 }
 
-const char* const kStyle = R"(
-body { font: 14px/1.4 system-ui, sans-serif; margin: 16px; color: #222; background: #fff; }
-h1 { font-size: 20px; margin: 0 0 4px; }
-h2 { font-size: 16px; margin: 18px 0 6px; }
-.sub, .note { color: #555; margin: 0 0 8px; }
-.controls { display: flex; align-items: center; gap: 8px; margin: 8px 0; }
-.controls input[type=range] { width: 320px; }
-#frame-label { font-weight: 600; }
-.frame { display: flex; flex-wrap: wrap; gap: 8px; }
-.frame[hidden] { display: none; }
-.frame figure, .plot-box { margin: 0; }
-.frame img { display: block; image-rendering: pixelated; }
-figcaption { font-size: 12px; color: #444; }
-.colour-bar { display: flex; align-items: center; gap: 6px; font-size: 12px; margin: 6px 0; }
-.colour-bar .bar { display: inline-block; width: 200px; height: 10px; }
-.row { display: flex; flex-wrap: wrap; gap: 24px; align-items: flex-start; margin-top: 12px; }
-.wipe-box { position: relative; width: 512px; max-width: 100%; }
-.wipe-box img { display: block; width: 100%; height: auto; image-rendering: pixelated; }
-.wipe-box img#wipe-a { position: absolute; left: 0; top: 0; }
-#wipe { width: 512px; max-width: 100%; }
-.plots { display: flex; flex-wrap: wrap; gap: 16px; }
-svg.plot { display: block; font-size: 10px; cursor: crosshair; }
-svg.plot .area { fill: #fafafa; stroke: #999; }
-svg.plot .grid { stroke: #ddd; }
-svg.plot .tick { fill: #555; }
-svg.plot .cursor { stroke: #000; stroke-dasharray: 3 3; }
-svg.plot polyline { stroke-width: 1.5; }
-.key { margin-left: 8px; white-space: nowrap; }
-.swatch { display: inline-block; width: 12px; height: 3px; vertical-align: middle; margin-right: 3px; }
-table { border-collapse: collapse; margin: 0 24px 12px 0; display: inline-table; vertical-align: top; }
-caption { text-align: left; font-weight: 600; padding-bottom: 4px; }
-th, td { text-align: left; padding: 2px 10px 2px 0; border-bottom: 1px solid #eee; font-weight: normal; }
-th { color: #555; }
-td { font-variant-numeric: tabular-nums; }
-)";
-
-// The frame selector (slider, buttons, arrow keys, a click on a plot), the wipe between two of
-// the frame's images, the selected frame's numbers. Once every image has decoded it marks the
-// body data-ready="1" with what it found (decoded images, points per plot, element positions),
-// which tests read through a headless browser (tests/app_html_report_test.cpp).
-const char* const kScript = R"(
-(function () {
-  'use strict';
-  const data = JSON.parse(document.getElementById('report-data').textContent);
-  const n = data.frames.length;
-  const slider = document.getElementById('frame');
-  const frames = Array.from(document.querySelectorAll('.frame'));
-  const plots = Array.from(document.querySelectorAll('svg.plot'));
-  const pickA = document.getElementById('wipe-left'), pickB = document.getElementById('wipe-right');
-  const wipe = document.getElementById('wipe');
-  let current = 0;
-  function fmt(v) { return v === null ? '\u2013' : Number(v.toPrecision(5)).toString(); }
-  function source(k, name) {
-    const img = frames[k] && frames[k].querySelector('img[data-name="' + CSS.escape(name) + '"]');
-    return img ? img.src : '';
-  }
-  function showWipe() {
-    const a = source(current, pickA.value), b = source(current, pickB.value);
-    document.getElementById('wipe-panel').hidden = !(a && b);
-    if (a && b) {
-      document.getElementById('wipe-a').src = a;
-      document.getElementById('wipe-b').src = b;
-    }
-    document.getElementById('wipe-a').style.clipPath = 'inset(0 ' + (100 - wipe.value) + '% 0 0)';
-  }
-  function show(k) {
-    current = Math.max(0, Math.min(n - 1, k));
-    slider.value = current;
-    document.getElementById('frame-label').textContent =
-        (current + 1) + ' / ' + n + ': ' + data.frames[current];
-    frames.forEach(function (f, i) { f.hidden = i !== current; });
-    plots.forEach(function (svg) {
-      const x0 = Number(svg.dataset.x0), x1 = Number(svg.dataset.x1);
-      const x = n > 1 ? x0 + (x1 - x0) * current / (n - 1) : x0;
-      const c = svg.querySelector('.cursor');
-      c.setAttribute('x1', x);
-      c.setAttribute('x2', x);
-    });
-    const rows = [];
-    data.plots.forEach(function (p) {
-      p.series.forEach(function (s) {
-        rows.push('<tr><th>' + p.title.replace(/</g, '&lt;') + ', ' + s.name.replace(/</g, '&lt;') +
-                  '</th><td>' + fmt(s.values[current]) + '</td></tr>');
-      });
-    });
-    document.getElementById('frame-values').innerHTML = rows.join('');
-    showWipe();
-    document.body.dataset.frame = current;
-  }
-  slider.addEventListener('input', function () { show(Number(slider.value)); });
-  document.getElementById('prev').addEventListener('click', function () { show(current - 1); });
-  document.getElementById('next').addEventListener('click', function () { show(current + 1); });
-  document.addEventListener('keydown', function (e) {
-    if (e.target.tagName === 'SELECT' || e.target.tagName === 'INPUT') return;
-    if (e.key === 'ArrowLeft') show(current - 1);
-    if (e.key === 'ArrowRight') show(current + 1);
-  });
-  plots.forEach(function (svg) {
-    svg.addEventListener('click', function (e) {
-      const r = svg.getBoundingClientRect();
-      const x = (e.clientX - r.left) * svg.viewBox.baseVal.width / r.width;
-      const x0 = Number(svg.dataset.x0), x1 = Number(svg.dataset.x1);
-      show(n > 1 ? Math.round((x - x0) / (x1 - x0) * (n - 1)) : 0);
-    });
-  });
-  [pickA, pickB, wipe].forEach(function (el) { el.addEventListener('input', showWipe); });
-  const start = /^#frame=(\d+)$/.exec(location.hash);  // report.html#frame=K: the K-th frame
-  show(start ? Number(start[1]) : 0);
-
-  function rect(el) {
-    const r = el.getBoundingClientRect();
-    return [r.left + window.scrollX, r.top + window.scrollY, r.width, r.height].map(Math.round).join(',');
-  }
-  const images = Array.from(document.querySelectorAll('.frame img'));
-  Promise.all(images.map(function (img) {
-    return img.decode().then(function () { return img.naturalWidth > 0; }, function () { return false; });
-  })).then(function (decoded) {
-    const ok = decoded.filter(Boolean).length;
-    images.forEach(function (img) { if (!img.closest('.frame').hidden) img.dataset.rect = rect(img); });
-    plots.forEach(function (svg) {
-      let points = svg.querySelectorAll('circle.point').length;
-      svg.querySelectorAll('polyline').forEach(function (l) { points += l.points.numberOfItems; });
-      svg.dataset.parsedPoints = points;
-      svg.dataset.rect = rect(svg);
-    });
-    document.body.dataset.imagesDecoded = ok;
-    document.body.dataset.imagesFailed = decoded.length - ok;
-    document.body.dataset.ready = '1';
-  });
-})();
-)";
-
 }  // namespace
 
 std::string base64(const std::string& bytes) {
@@ -337,7 +210,8 @@ std::string base64(const std::string& bytes) {
   }
   if (i < bytes.size()) {
     const bool two = i + 1 < bytes.size();
-    const uint32_t v = uint32_t(uint8_t(bytes[i])) << 16 | (two ? uint32_t(uint8_t(bytes[i + 1])) << 8 : 0);
+    const uint32_t v =
+        uint32_t(uint8_t(bytes[i])) << 16 | (two ? uint32_t(uint8_t(bytes[i + 1])) << 8 : 0);
     out += kDigits[(v >> 18) & 63];
     out += kDigits[(v >> 12) & 63];
     out += two ? kDigits[(v >> 6) & 63] : '=';
@@ -351,12 +225,23 @@ std::string html_escape(const std::string& text) {
   out.reserve(text.size());
   for (char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&#39;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&#39;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -373,7 +258,8 @@ std::string html_images_note(int frames) {
   if (frames <= kHtmlMaxImageFrames) return "";
   return "Images are embedded for " + std::to_string(kHtmlMaxImageFrames) + " of the " +
          std::to_string(frames) + " frames, evenly spaced from the first (at most " +
-         std::to_string(kHtmlMaxImageFrames) + " per page, to keep it small); the plots cover every frame.";
+         std::to_string(kHtmlMaxImageFrames) +
+         " per page, to keep it small); the plots cover every frame.";
 }
 
 std::string html_report(const HtmlReport& r) {
@@ -401,18 +287,22 @@ std::string html_report(const HtmlReport& r) {
     // No network: images come from data: URIs, style and script are inline.
     << "<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; img-src data:; "
        "style-src 'unsafe-inline'; script-src 'unsafe-inline'\">\n"
-    << "<title>" << html_escape(r.title) << "</title>\n<style>" << kStyle << "</style>\n</head>\n<body>\n"
+    << "<title>" << html_escape(r.title) << "</title>\n<style>" << kStyle
+    << "</style>\n</head>\n<body>\n"
     << "<h1>" << html_escape(r.title) << "</h1>\n";
   if (!r.subtitle.empty()) o << "<p class=\"sub\">" << html_escape(r.subtitle) << "</p>\n";
 
-  o << "<section id=\"viewer\">\n<div class=\"controls\"><button id=\"prev\" type=\"button\">&#9664;</button>"
-    << "<input id=\"frame\" type=\"range\" min=\"0\" max=\"" << n - 1 << "\" value=\"0\" aria-label=\"frame\">"
-    << "<button id=\"next\" type=\"button\">&#9654;</button><span id=\"frame-label\">1 / " << n << ": "
-    << html_escape(r.frames[0]) << "</span></div>\n";
+  o << "<section id=\"viewer\">\n<div class=\"controls\"><button id=\"prev\" "
+       "type=\"button\">&#9664;</button>"
+    << "<input id=\"frame\" type=\"range\" min=\"0\" max=\"" << n - 1
+    << "\" value=\"0\" aria-label=\"frame\">"
+    << "<button id=\"next\" type=\"button\">&#9654;</button><span id=\"frame-label\">1 / " << n
+    << ": " << html_escape(r.frames[0]) << "</span></div>\n";
   if (!r.images_note.empty()) o << "<p class=\"note\">" << html_escape(r.images_note) << "</p>\n";
   if (!names.empty()) {
     o << "<div class=\"frames\">\n";
-    for (size_t k = 0; k < n; ++k) o << frame_images(r.images[k], static_cast<int>(k), r.images_note);
+    for (size_t k = 0; k < n; ++k)
+      o << frame_images(r.images[k], static_cast<int>(k), r.images_note);
     o << "</div>\n" << colour_bar(r.colour_bar);
   }
   o << "<div class=\"row\">\n";
@@ -420,21 +310,28 @@ std::string html_report(const HtmlReport& r) {
     auto options = [&](size_t selected) {
       std::string s;
       for (size_t i = 0; i < names.size(); ++i)
-        s += "<option" + std::string(i == selected ? " selected" : "") + ">" + html_escape(names[i]) + "</option>";
+        s += "<option" + std::string(i == selected ? " selected" : "") + ">" +
+             html_escape(names[i]) + "</option>";
       return s;
     };
     auto index_of = [&](const std::string& name, size_t fallback) {
       const auto it = std::find(names.begin(), names.end(), name);
       return it == names.end() ? fallback : static_cast<size_t>(it - names.begin());
     };
-    const size_t a = index_of(r.wipe_left, 0), b = index_of(r.wipe_right, std::min<size_t>(1, names.size() - 1));
-    o << "<div id=\"wipe-panel\"><h2>Wipe</h2><div class=\"controls\">left <select id=\"wipe-left\">"
-      << options(a) << "</select> right <select id=\"wipe-right\">" << options(b) << "</select></div>\n"
-      << "<div class=\"wipe-box\"><img id=\"wipe-b\" alt=\"right image\"><img id=\"wipe-a\" alt=\"left image\"></div>\n"
-      << "<input id=\"wipe\" type=\"range\" min=\"0\" max=\"100\" value=\"50\" aria-label=\"wipe position\"></div>\n";
+    const size_t a = index_of(r.wipe_left, 0),
+                 b = index_of(r.wipe_right, std::min<size_t>(1, names.size() - 1));
+    o << "<div id=\"wipe-panel\"><h2>Wipe</h2><div class=\"controls\">left <select "
+         "id=\"wipe-left\">"
+      << options(a) << "</select> right <select id=\"wipe-right\">" << options(b)
+      << "</select></div>\n"
+      << "<div class=\"wipe-box\"><img id=\"wipe-b\" alt=\"right image\"><img id=\"wipe-a\" "
+         "alt=\"left image\"></div>\n"
+      << "<input id=\"wipe\" type=\"range\" min=\"0\" max=\"100\" value=\"50\" aria-label=\"wipe "
+         "position\"></div>\n";
   } else {
     o << "<input id=\"wipe\" type=\"hidden\" value=\"50\"><select id=\"wipe-left\" hidden></select>"
-      << "<select id=\"wipe-right\" hidden></select><div id=\"wipe-panel\" hidden><img id=\"wipe-a\" alt=\"\">"
+      << "<select id=\"wipe-right\" hidden></select><div id=\"wipe-panel\" hidden><img "
+         "id=\"wipe-a\" alt=\"\">"
       << "<img id=\"wipe-b\" alt=\"\"></div>\n";
   }
   o << "<div><h2>This frame</h2><table id=\"frame-values\"></table></div>\n</div>\n</section>\n";

@@ -57,7 +57,8 @@ struct HtmlReport {
   // Per frame (same length as frames, or empty): its images, empty for frames without. The
   // first image set's names are the ones the wipe offers.
   std::vector<std::vector<HtmlImage>> images;
-  std::string wipe_left, wipe_right;  // the wipe's images at first, by name (default: the first two)
+  std::string wipe_left,
+      wipe_right;           // the wipe's images at first, by name (default: the first two)
   std::string images_note;  // says which frames carry images, when not all do
   HtmlColourBar colour_bar;
   std::vector<HtmlTable> tables;

@@ -17,9 +17,9 @@ struct Rgb {
   uint8_t r, g, b;
 };
 // matplotlib's magma at 0, 1/8, ..., 1 (rounded to 8 bits).
-const Rgb kMagma[] = {{0, 0, 4},       {28, 16, 68},    {79, 18, 123},
-                      {129, 37, 129},  {181, 54, 122},  {229, 80, 100},
-                      {251, 135, 97},  {254, 194, 135}, {252, 253, 191}};
+const Rgb kMagma[] = {{0, 0, 4},      {28, 16, 68},    {79, 18, 123},
+                      {129, 37, 129}, {181, 54, 122},  {229, 80, 100},
+                      {251, 135, 97}, {254, 194, 135}, {252, 253, 191}};
 
 // The smallest whole factor that leaves `image` at most kHtmlMaxImagePixels pixels.
 int downscale_factor(const Image& image) {

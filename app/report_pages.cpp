@@ -19,6 +19,8 @@ std::string fixed(double v, const char* unit, int digits = 3) {
   return buf;
 }
 
+std::string frames_text(size_t n) { return std::to_string(n) + (n == 1 ? " frame" : " frames"); }
+
 // A plot of report keys, one series per key.
 HtmlPlot plot_of(const nlohmann::json& frames, const std::string& title, bool log_scale,
                  const std::vector<std::pair<std::string, const char*>>& series) {
@@ -38,11 +40,12 @@ HtmlReport denoise_page(const nlohmann::json& report, std::vector<std::vector<Ht
   const nlohmann::json& frames = report.at("frames");
   HtmlReport page;
   page.title = "svgf denoise: " + report.value("scene", std::string("?"));
-  page.subtitle = std::to_string(frames.size()) + " frames of " +
-                  std::to_string(report.value("width", 0)) + "x" +
-                  std::to_string(report.value("height", 0)) + " from " +
-                  report.value("input", std::string()) + ", " + report.value("denoiser", std::string());
-  for (const auto& f : frames) page.frames.push_back(f.value("input", std::to_string(f.value("frame", 0))));
+  page.subtitle = frames_text(frames.size()) + " of " + std::to_string(report.value("width", 0)) +
+                  "x" + std::to_string(report.value("height", 0)) + " from " +
+                  report.value("input", std::string()) + ", " +
+                  report.value("denoiser", std::string());
+  for (const auto& f : frames)
+    page.frames.push_back(f.value("input", std::to_string(f.value("frame", 0))));
 
   page.plots.push_back(plot_of(frames, "PSNR (dB, higher is better)", false,
                                {{"noisy", "psnr_noisy_db"}, {"denoised", "psnr_denoised_db"}}));
@@ -88,15 +91,21 @@ HtmlReport denoise_page(const nlohmann::json& report, std::vector<std::vector<Ht
   }
   HtmlTable quality{"Quality and input (means over the frames)", {}};
   if (report.contains("mean_psnr_noisy_db"))
-    quality.rows.push_back({"PSNR noisy", fixed(report["mean_psnr_noisy_db"].get<double>(), " dB", 2)});
+    quality.rows.push_back(
+        {"PSNR noisy", fixed(report["mean_psnr_noisy_db"].get<double>(), " dB", 2)});
   if (report.contains("mean_psnr_denoised_db"))
-    quality.rows.push_back({"PSNR denoised", fixed(report["mean_psnr_denoised_db"].get<double>(), " dB", 2)});
-  quality.rows.push_back({"replaced samples", report.value("replaced_samples", nlohmann::json(0)).dump()});
-  quality.rows.push_back({"repaired pixels", report.value("repairs", nlohmann::json::object()).dump()});
-  quality.rows.push_back({"fallback pixels", report.value("fallback_pixels", nlohmann::json(0)).dump()});
-  quality.rows.push_back({"input warnings",
-                          std::to_string(report.value("input_warnings", nlohmann::json::array()).size()) +
-                              " (report.json lists them)"});
+    quality.rows.push_back(
+        {"PSNR denoised", fixed(report["mean_psnr_denoised_db"].get<double>(), " dB", 2)});
+  quality.rows.push_back(
+      {"replaced samples", report.value("replaced_samples", nlohmann::json(0)).dump()});
+  quality.rows.push_back(
+      {"repaired pixels", report.value("repairs", nlohmann::json::object()).dump()});
+  quality.rows.push_back(
+      {"fallback pixels", report.value("fallback_pixels", nlohmann::json(0)).dump()});
+  quality.rows.push_back(
+      {"input warnings",
+       std::to_string(report.value("input_warnings", nlohmann::json::array()).size()) +
+           " (report.json lists them)"});
   page.tables = {run, timing, quality};
   page.wipe_left = "denoised";
   page.wipe_right = "reference";
@@ -109,10 +118,11 @@ HtmlReport compare_page(const nlohmann::json& report, std::vector<std::vector<Ht
   const std::string a = report.value("a", std::string()), b = report.value("b", std::string());
   HtmlReport page;
   page.title = "svgf compare: " + a + " against " + b;
-  page.subtitle = std::to_string(frames.size()) + " frames; PSNR, SSIM, relMSE and FLIP of A against B " +
-                  "(docs/metrics.md)";
+  page.subtitle =
+      frames_text(frames.size()) + "; PSNR, SSIM, relMSE and FLIP of A against B (docs/metrics.md)";
   for (const auto& f : frames) page.frames.push_back(f.value("file", std::string()));
-  page.plots.push_back(plot_of(frames, "PSNR (dB, higher is better)", false, {{"A vs B", "psnr_db"}}));
+  page.plots.push_back(
+      plot_of(frames, "PSNR (dB, higher is better)", false, {{"A vs B", "psnr_db"}}));
   page.plots.push_back(plot_of(frames, "SSIM (higher is better)", false, {{"A vs B", "ssim"}}));
   page.plots.push_back(plot_of(frames, "relMSE (lower is better)", true, {{"A vs B", "relmse"}}));
   page.plots.push_back(plot_of(frames, "FLIP (lower is better)", false, {{"A vs B", "flip"}}));
@@ -135,8 +145,9 @@ HtmlReport compare_page(const nlohmann::json& report, std::vector<std::vector<Ht
                     {"FLIP observer", "67 pixels per degree"}}};
   const nlohmann::json mean = report.value("mean", nlohmann::json::object());
   auto mean_of = [&](const char* key, const char* unit, int digits) {
-    return mean.contains(key) && mean[key].is_number() ? fixed(mean[key].get<double>(), unit, digits)
-                                                       : std::string("none");
+    return mean.contains(key) && mean[key].is_number()
+               ? fixed(mean[key].get<double>(), unit, digits)
+               : std::string("none");
   };
   HtmlTable means{"Means over the frames",
                   {{"PSNR (frames that differ)", mean_of("psnr_db", " dB", 3)},

@@ -57,9 +57,10 @@ int run_browser(const std::string& browser, const fs::path& profile, const std::
   const std::string command =
       "timeout 60 " + quoted(browser) +
       " --headless --disable-gpu --no-sandbox --hide-scrollbars --force-device-scale-factor=1"
-      " --no-first-run --virtual-time-budget=5000 --user-data-dir=" + quoted(profile.string()) +
-      " --window-size=" + std::to_string(kWindowWidth) + "," + std::to_string(kWindowHeight) +
-      " " + action + " " + quoted(url) + " >" + quoted(out.string()) + " 2>" + quoted(log.string());
+      " --no-first-run --virtual-time-budget=5000 --user-data-dir=" +
+      quoted(profile.string()) + " --window-size=" + std::to_string(kWindowWidth) + "," +
+      std::to_string(kWindowHeight) + " " + action + " " + quoted(url) + " >" +
+      quoted(out.string()) + " 2>" + quoted(log.string());
   return std::system(command.c_str());
 }
 
@@ -85,8 +86,8 @@ TEST_CASE("report.html renders in headless Chromium: images, plots, script", "[.
   std::string looked;
   const std::string browser = find_browser(&looked);
   if (browser.empty()) {
-    WARN("SKIPPED: no browser to render report.html (looked for " << looked
-                                                                   << "; apt-get install chromium, or set SVGF_BROWSER)");
+    WARN("SKIPPED: no browser to render report.html (looked for "
+         << looked << "; apt-get install chromium, or set SVGF_BROWSER)");
     return;
   }
   const fs::path out = test::scratch("browser_out"), work = test::scratch("browser_work");
@@ -97,8 +98,8 @@ TEST_CASE("report.html renders in headless Chromium: images, plots, script", "[.
   const fs::path shot = work / "shot.png", dom = work / "dom.html", log = work / "browser.log";
   INFO(browser << "; its messages are in " << log);
   REQUIRE(run_browser(browser, work / "profile", "--dump-dom", url, dom, log) == 0);
-  REQUIRE(run_browser(browser, work / "profile", "--screenshot=" + shot.string(), url, work / "stdout",
-                      log) == 0);
+  REQUIRE(run_browser(browser, work / "profile", "--screenshot=" + shot.string(), url,
+                      work / "stdout", log) == 0);
 
   // The script ran: every image decoded, frame 2 selected, the plots' points parsed.
   const std::string page = test::file_bytes(dom);
@@ -123,7 +124,8 @@ TEST_CASE("report.html renders in headless Chromium: images, plots, script", "[.
   REQUIRE(screen.height == kWindowHeight);
   std::set<uint32_t> colours;
   for (size_t i = 0; i < screen.rgb.size(); i += 3)
-    colours.insert(uint32_t(screen.rgb[i]) << 16 | uint32_t(screen.rgb[i + 1]) << 8 | screen.rgb[i + 2]);
+    colours.insert(uint32_t(screen.rgb[i]) << 16 | uint32_t(screen.rgb[i + 1]) << 8 |
+                   screen.rgb[i + 2]);
   CHECK(colours.size() > 2000);
 
   std::vector<std::string> shown;  // the images the script placed (frame 2's only)
@@ -131,8 +133,8 @@ TEST_CASE("report.html renders in headless Chromium: images, plots, script", "[.
     if (test::has_attribute(img, "data-rect")) shown.push_back(img);
   REQUIRE(shown.size() == 4);
   const auto all = test::frame_images(page);
-  CHECK(test::attribute(shown[0], "src") == test::attribute(all[8], "src"));   // frame 2's noisy
-  CHECK(test::attribute(all[0], "src") != test::attribute(all[8], "src"));     // not frame 0's
+  CHECK(test::attribute(shown[0], "src") == test::attribute(all[8], "src"));  // frame 2's noisy
+  CHECK(test::attribute(all[0], "src") != test::attribute(all[8], "src"));    // not frame 0's
   int right_edge = 0, images_bottom = 0;
   for (const std::string& img : shown) {
     INFO(test::attribute(img, "data-name"));

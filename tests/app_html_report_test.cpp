@@ -14,8 +14,8 @@
 #include "app/html_report.h"
 #include "app/report_images.h"
 #include "core/tonemap.h"
-#include "metrics/flip.h"
 #include "io/png.h"
+#include "metrics/flip.h"
 #include "app_test_support.h"
 #include "html_page_support.h"
 
@@ -57,9 +57,13 @@ std::vector<std::string> plots_of(const std::string& html) {
 }  // namespace
 
 TEST_CASE("base64 gives RFC 4648's test vectors", "[app][html]") {
-  const std::vector<std::pair<std::string, std::string>> vectors = {
-      {"", ""},         {"f", "Zg=="},         {"fo", "Zm8="},        {"foo", "Zm9v"},
-      {"foob", "Zm9vYg=="}, {"fooba", "Zm9vYmE="}, {"foobar", "Zm9vYmFy"}};
+  const std::vector<std::pair<std::string, std::string>> vectors = {{"", ""},
+                                                                    {"f", "Zg=="},
+                                                                    {"fo", "Zm8="},
+                                                                    {"foo", "Zm9v"},
+                                                                    {"foob", "Zm9vYg=="},
+                                                                    {"fooba", "Zm9vYmE="},
+                                                                    {"foobar", "Zm9vYmFy"}};
   for (const auto& [bytes, text] : vectors) {
     CHECK(app::base64(bytes) == text);
     CHECK(test::base64_decode(text) == bytes);
@@ -74,14 +78,15 @@ TEST_CASE("html_report: frames, embedded images, plot points, escaping", "[app][
   r.title = "run <1> & \"two\"";
   r.frames = {"frame_0000.exr", "frame_0001.exr", "f</script><b>2"};
   r.plots.push_back({"PSNR (dB)", {{"noisy", {10, 11, 12}}, {"denoised", {30, 31, 32}}}, false});
-  r.plots.push_back({"gaps", {{"a", {1, NAN, 3}}}, false});        // two lone points: dots
-  r.plots.push_back({"relMSE", {{"b", {0.5, 0.05, -1}}}, true});   // log: -1 left out
+  r.plots.push_back({"gaps", {{"a", {1, NAN, 3}}}, false});              // two lone points: dots
+  r.plots.push_back({"relMSE", {{"b", {0.5, 0.05, -1}}}, true});         // log: -1 left out
   r.plots.push_back({"nothing", {{"c", {NAN, INFINITY, NAN}}}, false});  // not drawn
   r.images = {{test_image("noisy", 5, 4, 1), test_image("denoised", 5, 4, 2)},
               {},
               {test_image("noisy", 5, 4, 3), test_image("denoised", 5, 4, 4)}};
   r.images_note = "every other frame";
-  r.tables.push_back({"Configuration", {{"input", "<script>alert('x')</script>"}, {"a&b", "\"q\""}}});
+  r.tables.push_back(
+      {"Configuration", {{"input", "<script>alert('x')</script>"}, {"a&b", "\"q\""}}});
   const std::string html = app::html_report(r);
 
   // One frame block each; images exactly as given, as base64 PNG data: URIs.
@@ -158,9 +163,12 @@ TEST_CASE("report images: the previews' tonemap, downscaled to the limit; the er
       io::decode_png_rgb8(app::preview_image("p", flat, 1.f).png, "preview");
   CHECK(preview.width == 151);
   CHECK(preview.height == 150);
-  CHECK(io::decode_png_rgb8(app::preview_image("p", Image(1920, 1080, 3), 1.f).png, "1080p").width == 320);
+  CHECK(
+      io::decode_png_rgb8(app::preview_image("p", Image(1920, 1080, 3), 1.f).png, "1080p").width ==
+      320);
   const uint8_t want = tonemap_channel(0.25f, 1.f);
-  CHECK(std::count(preview.rgb.begin(), preview.rgb.end(), want) == std::ptrdiff_t(preview.rgb.size()));
+  CHECK(std::count(preview.rgb.begin(), preview.rgb.end(), want) ==
+        std::ptrdiff_t(preview.rgb.size()));
   Image small(6, 2, 3, 0.f);  // under the limit: kept as is
   small.at(5, 1, 0) = 1.f;
   const io::Rgb8Image kept = io::decode_png_rgb8(app::preview_image("s", small, 2.f).png, "kept");
@@ -172,10 +180,12 @@ TEST_CASE("report images: the previews' tonemap, downscaled to the limit; the er
   map.at(1, 0, 0) = 1.f;
   map.at(2, 0, 0) = NAN;  // as no error
   const io::Rgb8Image colours = io::decode_png_rgb8(app::error_map_image("e", map).png, "map");
-  CHECK(std::vector<uint8_t>(colours.rgb.begin(), colours.rgb.begin() + 3) == std::vector<uint8_t>{0, 0, 4});
+  CHECK(std::vector<uint8_t>(colours.rgb.begin(), colours.rgb.begin() + 3) ==
+        std::vector<uint8_t>{0, 0, 4});
   CHECK(std::vector<uint8_t>(colours.rgb.begin() + 3, colours.rgb.begin() + 6) ==
         std::vector<uint8_t>{252, 253, 191});
-  CHECK(std::vector<uint8_t>(colours.rgb.begin() + 6, colours.rgb.end()) == std::vector<uint8_t>{0, 0, 4});
+  CHECK(std::vector<uint8_t>(colours.rgb.begin() + 6, colours.rgb.end()) ==
+        std::vector<uint8_t>{0, 0, 4});
   // FLIP of the previews: the map itself up to the limit; beyond, of the downscaled images for an
   // observer scaled alike, which for flat images is the full map's value.
   Image grey(301, 300, 3, 0.2f), light(301, 300, 3, 0.6f);
@@ -183,7 +193,8 @@ TEST_CASE("report images: the previews' tonemap, downscaled to the limit; the er
   CHECK(half.width() == 151);
   CHECK(half.at(70, 70, 0) == Approx(full.at(140, 140, 0)).epsilon(1e-5));
   const Image small_grey(6, 2, 3, 0.2f);
-  CHECK(app::preview_flip_map(small, small_grey).data() == metrics::flip_map(small, small_grey).data());
+  CHECK(app::preview_flip_map(small, small_grey).data() ==
+        metrics::flip_map(small, small_grey).data());
 
   const app::HtmlColourBar bar = app::error_map_colour_bar();
   CHECK(bar.colours.front() == "#000004");
@@ -191,10 +202,12 @@ TEST_CASE("report images: the previews' tonemap, downscaled to the limit; the er
 }
 
 TEST_CASE("svgf denoise and svgf compare write report.html", "[app][html]") {
-  const fs::path in = test::write_synthetic(test::scratch("html_in"), 3), out = test::scratch("html_out"),
-                 plain = test::scratch("html_plain"), work = test::scratch("html_work");
+  const fs::path in = test::write_synthetic(test::scratch("html_in"), 3),
+                 out = test::scratch("html_out"), plain = test::scratch("html_plain"),
+                 work = test::scratch("html_work");
   fs::create_directories(work);
-  REQUIRE(app::denoise_command({in.string(), out.string(), "--backend", "cpu", "--method", "gaussian"}) == 0);
+  REQUIRE(app::denoise_command(
+              {in.string(), out.string(), "--backend", "cpu", "--method", "gaussian"}) == 0);
   const std::string page = test::file_bytes(out / app::kReportHtml);
   CHECK(test::tags(page, "div class=\"frame\"").size() == 3);
   // noisy, denoised, reference, FLIP error for each frame (the synthetic frames have references)
@@ -218,14 +231,16 @@ TEST_CASE("svgf denoise and svgf compare write report.html", "[app][html]") {
   CHECK_THAT(bare, Catch::Contains("--no-preview"));
 
   // compare: beside --json, or --html FILE; a sequence as B adds its noisy frames.
-  REQUIRE(app::compare_command({out.string(), in.string(), "--json", (work / "c.json").string()}) == 0);
+  REQUIRE(app::compare_command({out.string(), in.string(), "--json", (work / "c.json").string()}) ==
+          0);
   const std::string cmp = test::file_bytes(work / "c.html");
   const auto cmp_imgs = test::frame_images(cmp);
   REQUIRE(cmp_imgs.size() == 12);
   CHECK(test::attribute(cmp_imgs[0], "data-name") == "noisy");
   CHECK(test::attribute(cmp_imgs[2], "data-name") == "reference");
   CHECK(plots_of(cmp).size() == 4);  // PSNR, SSIM, relMSE, FLIP
-  REQUIRE(app::compare_command({out.string(), plain.string(), "--html", (work / "d.html").string()}) == 0);
+  REQUIRE(app::compare_command(
+              {out.string(), plain.string(), "--html", (work / "d.html").string()}) == 0);
   const auto plain_imgs = test::frame_images(test::file_bytes(work / "d.html"));
   REQUIRE(plain_imgs.size() == 9);  // A, B, FLIP error
   CHECK(test::attribute(plain_imgs[1], "data-name") == "B");

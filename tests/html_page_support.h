@@ -44,13 +44,15 @@ inline std::string attribute(const std::string& tag, const std::string& name,
 }
 
 inline bool has_attribute(const std::string& tag, const std::string& name) {
-  return tag.find(" " + name + "=\"") != std::string::npos || tag.find(" " + name + ">") != std::string::npos ||
+  return tag.find(" " + name + "=\"") != std::string::npos ||
+         tag.find(" " + name + ">") != std::string::npos ||
          tag.find(" " + name + " ") != std::string::npos;
 }
 
 inline size_t count_of(const std::string& text, const std::string& what) {
   size_t n = 0;
-  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + what.size())) ++n;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + what.size()))
+    ++n;
   return n;
 }
 
@@ -81,7 +83,8 @@ inline std::string base64_decode(const std::string& text) {
 // The image a data:image/png;base64 src holds.
 inline io::Rgb8Image image_of_src(const std::string& src) {
   const std::string prefix = "data:image/png;base64,";
-  if (src.rfind(prefix, 0) != 0) throw std::invalid_argument("not a data: PNG: " + src.substr(0, 40));
+  if (src.rfind(prefix, 0) != 0)
+    throw std::invalid_argument("not a data: PNG: " + src.substr(0, 40));
   return io::decode_png_rgb8(base64_decode(src.substr(prefix.size())), "embedded image");
 }
 
