@@ -79,6 +79,20 @@ void write_flip_png(const std::string& path, const Image& map) {
   io::write_png_rgb8(path, rgb.data(), map.width(), map.height());
 }
 
+// Where the page goes: --html FILE, else beside --json FILE (with .html for its extension, or
+// FILE.html when that is FILE); none without either.
+std::string page_path(const Options& o) {
+  const std::string json_path = o.get("json", "");
+  if (o.has("html")) {
+    if (o.has("json") && o.get("html", "") == json_path)
+      throw UsageError("--html and --json name the same file '" + json_path + "'");
+    return o.get("html", "");
+  }
+  if (!o.has("json")) return "";
+  const std::string beside = fs::path(json_path).replace_extension(".html").string();
+  return beside == json_path ? json_path + ".html" : beside;
+}
+
 }  // namespace
 
 std::string compare_usage() {
@@ -102,9 +116,7 @@ int compare_command(const std::vector<std::string>& args) {
   const std::string a = o.positional()[0], b = o.positional()[1];
   const std::vector<std::string> names = images_of(a);
   const std::string diff_dir = o.get("diff", "");
-  const std::string html_path =
-      o.has("html") ? o.get("html", "")
-                    : o.has("json") ? fs::path(o.get("json", "")).replace_extension(".html").string() : "";
+  const std::string html_path = page_path(o);
   std::vector<std::vector<HtmlImage>> images;
   if (!diff_dir.empty()) fs::create_directories(diff_dir);
 

@@ -12,6 +12,7 @@
 #include "app/compare_command.h"
 #include "app/denoise_command.h"
 #include "app/html_report.h"
+#include "app/options.h"
 #include "app/report_images.h"
 #include "core/tonemap.h"
 #include "io/png.h"
@@ -245,6 +246,14 @@ TEST_CASE("svgf denoise and svgf compare write report.html", "[app][html]") {
   REQUIRE(plain_imgs.size() == 9);  // A, B, FLIP error
   CHECK(test::attribute(plain_imgs[1], "data-name") == "B");
   CHECK_FALSE(fs::exists(work / "d.json"));
+  // A --json FILE ending in .html keeps its JSON: the page goes to FILE.html.
+  const std::string e = (work / "e.html").string();
+  REQUIRE(app::compare_command({out.string(), in.string(), "--json", e}) == 0);
+  CHECK(test::read_json(work / "e.html")["frames"].size() == 3);
+  CHECK(test::frame_images(test::file_bytes(work / "e.html.html")).size() == 12);
+  CHECK_THROWS_AS(app::compare_command({out.string(), in.string(), "--json", (work / "f").string(),
+                                        "--html", (work / "f").string()}),
+                  app::UsageError);
   fs::remove_all(in);
   fs::remove_all(work);
   test::remove_output(out);
