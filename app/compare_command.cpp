@@ -11,6 +11,8 @@
 #include <nlohmann/json.hpp>
 
 #include "app/options.h"
+#include "app/report_images.h"
+#include "app/report_pages.h"
 #include "io/atomic_file.h"
 #include "io/exr_frame.h"
 #include "io/io_error.h"
@@ -52,13 +54,14 @@ std::string file_in(const std::string& path, const std::string& name) {
 }
 
 // An image to compare against: a sequence frame (a folder with manifest.json) gives its
-// reference channel; any other EXR its R, G, B.
-Image reference_image(const std::string& b, const std::string& name) {
+// reference channel (and its noisy color into `noisy`, when given); any other EXR its R, G, B.
+Image reference_image(const std::string& b, const std::string& name, Image* noisy = nullptr) {
   const std::string file = file_in(b, name);
   if (fs::is_directory(b) && fs::exists(fs::path(b) / "manifest.json")) {
     Frame f = io::read_frame(file);
     if (!f.has_reference())
       throw io::IoError(file + ": a sequence frame without a 'reference' channel");
+    if (noisy) *noisy = std::move(f.color);
     return std::move(f.reference);
   }
   return io::read_rgb_exr(file);
@@ -76,19 +79,35 @@ void write_flip_png(const std::string& path, const Image& map) {
   io::write_png_rgb8(path, rgb.data(), map.width(), map.height());
 }
 
+// Where the page goes: --html FILE, else beside --json FILE (with .html for its extension, or
+// FILE.html when that is FILE); none without either.
+std::string page_path(const Options& o) {
+  const std::string json_path = o.get("json", "");
+  if (o.has("html")) {
+    if (o.has("json") && o.get("html", "") == json_path)
+      throw UsageError("--html and --json name the same file '" + json_path + "'");
+    return o.get("html", "");
+  }
+  if (!o.has("json")) return "";
+  const std::string beside = fs::path(json_path).replace_extension(".html").string();
+  return beside == json_path ? json_path + ".html" : beside;
+}
+
 }  // namespace
 
 std::string compare_usage() {
-  return "usage: svgf compare A B [--json FILE] [--diff DIR]\n"
+  return "usage: svgf compare A B [--json FILE] [--html FILE] [--diff DIR]\n"
          "  PSNR, SSIM, relMSE and FLIP (docs/metrics.md) of A's images against B's, per frame\n"
          "  and mean. A and B are EXR files or folders of frame_NNNN.exr (matched by name); a\n"
          "  sequence folder (with manifest.json) as B gives each frame's reference channel.\n"
-         "  --json FILE               also write the numbers as JSON\n"
+         "  --json FILE               also write the numbers as JSON, and a page of plots and\n"
+         "                            images beside it (FILE with .html; docs/report.md)\n"
+         "  --html FILE               write that page as FILE\n"
          "  --diff DIR                write each frame's FLIP error map as DIR/<name>_flip.png\n";
 }
 
 int compare_command(const std::vector<std::string>& args) {
-  const Options o(args, {"json", "diff"}, {"help"});
+  const Options o(args, {"json", "html", "diff"}, {"help"});
   if (o.has("help")) {
     std::fputs(compare_usage().c_str(), stdout);
     return 0;
@@ -97,6 +116,8 @@ int compare_command(const std::vector<std::string>& args) {
   const std::string a = o.positional()[0], b = o.positional()[1];
   const std::vector<std::string> names = images_of(a);
   const std::string diff_dir = o.get("diff", "");
+  const std::string html_path = page_path(o);
+  std::vector<std::vector<HtmlImage>> images;
   if (!diff_dir.empty()) fs::create_directories(diff_dir);
 
   json frames = json::array();
@@ -106,7 +127,9 @@ int compare_command(const std::vector<std::string>& args) {
   for (const std::string& name : names) {
     const std::string fa = file_in(a, name);
     const Image ia = io::read_rgb_exr(fa);
-    const Image ib = reference_image(b, fs::is_directory(b) ? name : fs::path(b).filename().string());
+    Image noisy;
+    const Image ib =
+        reference_image(b, fs::is_directory(b) ? name : fs::path(b).filename().string(), &noisy);
     if (ia.width() != ib.width() || ia.height() != ib.height())
       throw io::IoError(fa + " is " + std::to_string(ia.width()) + "x" + std::to_string(ia.height()) +
                         ", its counterpart in " + b + " " + std::to_string(ib.width()) + "x" +
@@ -125,6 +148,10 @@ int compare_command(const std::vector<std::string>& args) {
     sum[2] += rel;
     sum[3] += flip;
     std::printf("%-24s %10.3f %8.5f %10.6f %8.5f\n", name.c_str(), psnr, ssim, rel, flip);
+    images.emplace_back();
+    if (!html_path.empty() && html_frame_has_images(static_cast<int>(images.size()) - 1,
+                                                    static_cast<int>(names.size())))
+      images.back() = compare_images(ia, ib, noisy.empty() ? nullptr : &noisy, flip_map);
     if (!diff_dir.empty())
       write_flip_png((fs::path(diff_dir) / (name.substr(0, name.size() - 4) + "_flip.png")).string(),
                      flip_map);
@@ -137,9 +164,12 @@ int compare_command(const std::vector<std::string>& args) {
   std::printf("%-24s %10.3f %8.5f %10.6f %8.5f   (PSNR over the %d frames that differ)\n", "mean",
               finite_psnr ? sum[0] / finite_psnr : INFINITY, sum[1] / n, sum[2] / n, sum[3] / n,
               finite_psnr);
-  if (o.has("json"))
-    io::write_file_atomically(o.get("json", ""),
-                              json{{"a", a}, {"b", b}, {"frames", frames}, {"mean", mean}}.dump(2) + "\n");
+  const json report{{"a", a}, {"b", b}, {"frames", frames}, {"mean", mean}};
+  if (o.has("json")) io::write_file_atomically(o.get("json", ""), report.dump(2) + "\n");
+  if (!html_path.empty())
+    io::write_file_atomically(
+        html_path, html_report(compare_page(report, std::move(images),
+                                            html_images_note(static_cast<int>(names.size())))));
   return 0;
 }
 

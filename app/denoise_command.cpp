@@ -15,6 +15,7 @@
 #include "app/interrupt.h"
 #include "app/method_options.h"
 #include "app/options.h"
+#include "app/report_images.h"
 #include "app/run_report.h"
 #include "cli/progress_bar.h"
 #include "pipeline/make_denoiser.h"
@@ -38,7 +39,8 @@ const char* const kUsageHead =
     "\n"
     "Denoises the sequence in IN_DIR (frame_NNNN.exr + manifest.json) into OUT_DIR:\n"
     "frame_NNNN.exr (linear RGB), preview/ PNGs (noisy | denoised | reference), report.json\n"
-    "and report.csv (per-frame time, replaced samples, PSNR and relMSE against the reference).\n"
+    "and report.csv (per-frame time, replaced samples, PSNR and relMSE against the reference),\n"
+    "report.html (a self-contained page of plots and images; docs/report.md).\n"
     "Frames are read in the order of their frame numbers, and each output keeps its input's\n"
     "number; the history restarts at camera cuts and at gaps in the numbering.\n"
     "OUT_DIR may not be IN_DIR, lie inside it or hold it (a usage error, exit 2).\n"
@@ -57,7 +59,7 @@ const char* const kUsageTail =
     "  --exposure E              preview exposure (default 1)\n"
     "  --no-verify               skip checking each frame file's SHA-256 against the manifest\n"
     "                            (checked for every frame before any output by default)\n"
-    "  --no-preview              skip the PNG previews\n";
+    "  --no-preview              skip the PNG previews (in preview/ and in report.html)\n";
 
 }  // namespace
 
@@ -170,6 +172,7 @@ void run(const RunSettings& s, Denoiser& denoiser, RunProgress& progress) {
 
   RunReport report(s.in_dir, sequence.manifest().scene, sequence.manifest().width,
                    sequence.manifest().height, denoiser.description());
+  if (!s.previews) report.set_images_note("No images: the run had --no-preview.");
   cli::ProgressBar bar("denoise", frames);
   Image out;
   progress.stage = "denoising";
@@ -199,6 +202,8 @@ void run(const RunSettings& s, Denoiser& denoiser, RunProgress& progress) {
     ++progress.frames_written;
     const std::string detail = report.add(planned, fs::path(progress.file).filename().string(), ms,
                                           denoiser.last_report(), in, out);
+    if (s.previews && html_frame_has_images(progress.frames_written - 1, frames))
+      report.add_images(denoise_images(in, out, s.exposure));
     bar.update(progress.frames_written, detail);
     progress.frame = -1;  // done: a stop before the next frame names none
     progress.file.clear();

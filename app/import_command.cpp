@@ -14,7 +14,7 @@
 #include "app/import_frame.h"
 #include "app/interrupt.h"
 #include "app/options.h"
-#include "app/progress_bar.h"
+#include "cli/progress_bar.h"
 #include "io/atomic_file.h"
 #include "io/printable.h"
 #include "io/sequence.h"
@@ -151,7 +151,7 @@ struct Run {
 // checking it (the first). Motion from matrices needs the previous frame's matrices: frame n's
 // come from n - 1 when it is imported.
 void import_all(const Run& run, ImportNotes& notes, io::SequenceWriter* writer, const char* label) {
-  ProgressBar bar(label, static_cast<int>(run.frames.size()));
+  cli::ProgressBar bar(label, static_cast<int>(run.frames.size()));
   io::SceneMatrices previous, current;
   int width = 0, height = 0, last = -2, done = 0;
   for (int n : run.frames) {

@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "app/report_pages.h"
 #include "io/atomic_file.h"
 #include "io/printable.h"
 #include "metrics/image_metrics.h"
@@ -82,6 +83,7 @@ std::string RunReport::add(const PlannedFrame& planned, const std::string& input
   csv << '\n';
   csv_ += csv.str();
   json_["frames"].push_back(fr);
+  images_.emplace_back();
   return detail;
 }
 
@@ -96,6 +98,10 @@ void RunReport::add_warnings(int frame, const std::vector<InputWarning>& warning
   }
 }
 
+void RunReport::add_images(std::vector<HtmlImage> images) {
+  if (!images_.empty()) images_.back() = std::move(images);
+}
+
 void RunReport::write(const std::string& folder) {
   json_["mean_time_ms"] = total_ms_ / frames_;
   json_["replaced_samples"] = replaced_total_;
@@ -106,6 +112,9 @@ void RunReport::write(const std::string& folder) {
     json_["mean_psnr_denoised_db"] = psnr_sum_ / with_reference_;
   }
   io::write_file_atomically((fs::path(folder) / kReportCsv).string(), csv_);
+  const std::string note = images_note_.empty() ? html_images_note(frames_) : images_note_;
+  io::write_file_atomically((fs::path(folder) / kReportHtml).string(),
+                            html_report(denoise_page(json_, images_, note)));
   io::write_file_atomically((fs::path(folder) / kReportJson).string(), json_.dump(2) + "\n");
 }
 
@@ -132,7 +141,8 @@ void RunReport::print_summary(const std::string& in_dir, const std::string& out_
     std::printf("  PSNR              %s dB noisy -> %s dB denoised (mean over %d frames)\n",
                 fixed(noisy_psnr_sum_ / with_reference_, 2).c_str(),
                 fixed(psnr_sum_ / with_reference_, 2).c_str(), with_reference_);
-  std::printf("  report            %s/%s, %s\n", out_dir.c_str(), kReportJson, kReportCsv);
+  std::printf("  report            %s/%s, %s, %s\n", out_dir.c_str(), kReportJson, kReportCsv,
+              kReportHtml);
 }
 
 std::string failure_report_path(const std::string& out_dir) {

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/frame_order.h"
+#include "app/html_report.h"
 #include "app/input_warnings.h"
 #include "core/denoiser.h"
 #include "core/frame.h"
@@ -28,8 +29,12 @@ class RunReport {
   // Input traps found in frame `frame` (app/input_warnings.h): listed in report.json, counted
   // by kind for the summary.
   void add_warnings(int frame, const std::vector<InputWarning>& warnings);
-  // report.csv, then report.json, each written atomically and checked (an IoError naming the
-  // file on a short write), into `folder`.
+  // Images of the frame last added, for report.html (app/report_images.h).
+  void add_images(std::vector<HtmlImage> images);
+  // What report.html says about the frames without images (html_images_note by default).
+  void set_images_note(std::string note) { images_note_ = std::move(note); }
+  // report.csv, report.html, then report.json, each written atomically and checked (an IoError
+  // naming the file on a short write), into `folder`.
   void write(const std::string& folder);
   void print_summary(const std::string& in_dir, const std::string& out_dir,
                      const std::string& denoiser) const;
@@ -49,6 +54,8 @@ class RunReport {
     std::string text;
   };
   std::map<std::string, WarningCount> warnings_;  // by kind
+  std::vector<std::vector<HtmlImage>> images_;     // per frame, for report.html
+  std::string images_note_;
 };
 
 // Where a run stands, for the failure report.

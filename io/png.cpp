@@ -79,4 +79,41 @@ void write_png_rgb8(const std::string& path, const uint8_t* rgb, int width, int 
   });
 }
 
+std::string encode_png_rgb8(const uint8_t* rgb, int width, int height) {
+  if (width <= 0 || height <= 0 || !rgb)
+    throw IoError("invalid PNG image " + std::to_string(width) + "x" + std::to_string(height));
+  // libpng's simplified API: no longjmp to guard against, errors in image.message.
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  image.width = static_cast<png_uint_32>(width);
+  image.height = static_cast<png_uint_32>(height);
+  image.format = PNG_FORMAT_RGB;
+  png_alloc_size_t size = 0;
+  if (!png_image_write_to_memory(&image, nullptr, &size, 0, rgb, 0, nullptr))
+    throw IoError(std::string("PNG encoding failed: ") + image.message);
+  std::string bytes(size, '\0');
+  if (!png_image_write_to_memory(&image, bytes.data(), &size, 0, rgb, 0, nullptr))
+    throw IoError(std::string("PNG encoding failed: ") + image.message);
+  bytes.resize(size);
+  return bytes;
+}
+
+Rgb8Image decode_png_rgb8(const std::string& bytes, const std::string& what) {
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_memory(&image, bytes.data(), bytes.size()))
+    throw IoError(what + ": not a readable PNG (" + image.message + ")");
+  image.format = PNG_FORMAT_RGB;
+  Rgb8Image out;
+  out.width = static_cast<int>(image.width);
+  out.height = static_cast<int>(image.height);
+  out.rgb.resize(PNG_IMAGE_SIZE(image));
+  png_color black{0, 0, 0};
+  if (!png_image_finish_read(&image, &black, out.rgb.data(), 0, nullptr)) {
+    png_image_free(&image);
+    throw IoError(what + ": PNG decoding failed (" + image.message + ")");
+  }
+  return out;
+}
+
 }  // namespace svgf::io

@@ -7,4 +7,4 @@ cd "$(dirname "$0")/.."
 ./scripts/build.sh svgf
 sequence=${SVGF_DEMO_SEQUENCE:-fixtures/cornell-moving}
 ./build/app/svgf denoise "$sequence" out "$@"
-echo "previews: out/preview/*.png (noisy | denoised | reference)"
+echo "previews: out/preview/*.png (noisy | denoised | reference); all in one page: out/report.html"

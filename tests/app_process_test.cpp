@@ -66,7 +66,8 @@ int wait_for(pid_t pid) {
 
 // Issue 15, item 3: report.json was written through an unchecked std::ofstream, so a full disk
 // gave an empty or cut report, renamed into place, and exit status 0. Here a file size limit
-// between the frames' size and the report's makes only the report's write fail.
+// between the frames' size and the report's makes only the report's write fail (report.html,
+// written before report.json through the same checked write, is the first to exceed it).
 TEST_CASE("svgf denoise stops on a report it could not write", "[app][process]") {
   test::SyntheticScene small;
   small.width = 16;
@@ -83,16 +84,17 @@ TEST_CASE("svgf denoise stops on a report it could not write", "[app][process]")
   for (const auto& [name, bytes] : before)
     if (name.rfind("frame_", 0) == 0) largest_frame = std::max(largest_frame, bytes.size());
   REQUIRE(before.at("report.json").size() > largest_frame + 1024);  // room for a cap between
+  REQUIRE(before.at("report.html").size() > largest_frame + 1024);  // written before report.json
 
   const pid_t pid = start_svgf(args, log, largest_frame + 512);
   REQUIRE(wait_for(pid) == 1);
   INFO(file_bytes(log));
-  REQUIRE_THAT(file_bytes(log), Catch::Contains("report.json") && Catch::Contains("write error"));
+  REQUIRE_THAT(file_bytes(log), Catch::Contains("report.html") && Catch::Contains("write error"));
   REQUIRE(test::snapshot(out) == before);
   REQUIRE(test::leftovers(out).empty());
   const auto failure = read_json(out.string() + ".failed-report.json");
   REQUIRE(failure["stage"] == "writing the report");
-  REQUIRE_THAT(failure["error"].get<std::string>(), Catch::Contains("report.json"));
+  REQUIRE_THAT(failure["error"].get<std::string>(), Catch::Contains("report.html"));
   fs::remove_all(in);
   fs::remove(log);
   test::remove_output(out);

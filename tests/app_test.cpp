@@ -289,7 +289,7 @@ TEST_CASE("svgf denoise restarts the history at a gap and keeps the frame number
   REQUIRE(file_names(out) == std::vector<std::string>{"frame_0000.exr", "frame_0001.exr",
                                                       "frame_0002.exr", "frame_0005.exr",
                                                       "frame_0006.exr", "report.csv",
-                                                      "report.json"});
+                                                      "report.html", "report.json"});
   // Frames 5 and 6 come out as if the sequence started at 5.
   for (const char* name : {"frame_0005.exr", "frame_0006.exr"}) {
     INFO(name);

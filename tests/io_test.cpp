@@ -647,6 +647,28 @@ TEST_CASE("write_png_rgb8 writes an 8-bit RGB PNG atomically", "[io][png]") {
   CHECK(list_dir(tmp.path) == std::set<std::string>{"out.png"});
 }
 
+TEST_CASE("encode_png_rgb8 and decode_png_rgb8 round trip; bad bytes are named", "[io][png]") {
+  const int w = 19, h = 7;
+  std::vector<uint8_t> rgb(static_cast<size_t>(w) * h * 3);
+  std::mt19937 rng(5);
+  for (uint8_t& v : rgb) v = static_cast<uint8_t>(rng());
+  const std::string bytes = io::encode_png_rgb8(rgb.data(), w, h);
+  CHECK(bytes.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0);
+  const io::Rgb8Image back = io::decode_png_rgb8(bytes, "round trip");
+  CHECK(back.width == w);
+  CHECK(back.height == h);
+  CHECK(back.rgb == rgb);
+  // The file writer and the encoder give the same image.
+  TempDir tmp;
+  io::write_png_rgb8(tmp / "same.png", rgb.data(), w, h);
+  CHECK(io::decode_png_rgb8(read_text(tmp / "same.png"), "file").rgb == rgb);
+
+  CHECK_THAT(io_error_of([&] { io::decode_png_rgb8("not a png", "page image 3"); }),
+             Contains("page image 3"));
+  CHECK_THROWS_AS(io::decode_png_rgb8(bytes.substr(0, bytes.size() / 2), "cut"), io::IoError);
+  CHECK_THROWS_AS(io::encode_png_rgb8(rgb.data(), 0, h), io::IoError);
+}
+
 TEST_CASE("frame_file_name", "[io][sequence]") {
   CHECK(io::frame_file_name(0) == "frame_0000.exr");
   CHECK(io::frame_file_name(3) == "frame_0003.exr");
