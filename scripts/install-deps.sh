@@ -14,6 +14,7 @@ packages=(
   catch2                # tests (Catch2 2.13)
   libopencv-dev libopencv-contrib-dev   # independent checks (imgproc, ximgproc, quality)
   gnuplot-nox           # quality-vs-speed charts
+  chromium              # the report page's browser test (tests/app_browser_test.cpp; ~30 s, 411 MB)
   clang libclang-rt-14-dev   # fuzz targets: libFuzzer and clang's sanitizer runtimes (scripts/fuzz.sh)
 )
 missing=()
