@@ -90,14 +90,27 @@ void count_values(const Image& im) { tally().frame_values += static_cast<int64_t
 
 TEST_CASE("pipeline: CPU vs CUDA exact bitwise over whole sequences; fast within tolerance",
           "[pipeline][fixture]") {
+  // The defaults, and the converging configuration with the anti-lag (its neighbourhood reads
+  // and the variance of the mean) on every fixture too.
+  SvgfParams converge = svgf_preset("converge");
+  converge.antilag = true;
+  const std::pair<std::string, SvgfParams> settings[] = {{"defaults", SvgfParams()},
+                                                         {"converge + antilag", converge}};
+  for (const auto& [setting, params] : settings)
   for (const Source& src : sources()) {
-    tally().sequences.push_back(src.name + " (" + std::to_string(src.frames) + " frames)");
-    auto cpu = make_denoiser(config(Backend::Cpu));
-    auto exact = make_denoiser(config(Backend::Cuda));
-    auto fast = make_denoiser(config(Backend::Cuda, Mode::Fast));
+    tally().sequences.push_back(src.name + " (" + std::to_string(src.frames) + " frames, " +
+                                setting + ")");
+    const auto make = [&, params = params](Backend b, Mode m) {
+      DenoiserConfig c = config(b, m);
+      c.svgf = params;
+      return make_denoiser(c);
+    };
+    auto cpu = make(Backend::Cpu, Mode::Exact);
+    auto exact = make(Backend::Cuda, Mode::Exact);
+    auto fast = make(Backend::Cuda, Mode::Fast);
     for (int k = 0; k < src.frames; ++k) {
       const Frame f = src.frame(k);
-      const std::string where = src.name + ", frame " + std::to_string(k);
+      const std::string where = src.name + " (" + setting + "), frame " + std::to_string(k);
       if (k > 0 && src.cut(k)) {
         cpu->reset();
         exact->reset();
@@ -180,6 +193,12 @@ TEST_CASE("parameter sweep: CPU vs CUDA exact bitwise, fast within tolerance, ev
   with("phi_normal 100 (not 2^m)", [](SvgfParams& p) { p.phi_normal = 100.f; });
   with("phi_color 1e6", [](SvgfParams& p) { p.phi_color = 1e6f; });
   with("phi_color 0.5", [](SvgfParams& p) { p.phi_color = 0.5f; });
+  with("preset paper", [](SvgfParams& p) { p = svgf_preset("paper"); });
+  with("preset converge", [](SvgfParams& p) { p = svgf_preset("converge"); });
+  with("antilag, relative 0", [](SvgfParams& p) {
+    p.antilag = true;
+    p.antilag_relative = 0.f;
+  });
   for (const auto& [name, p] : settings) {
     DenoiserConfig c = config(Backend::Cpu);
     c.svgf = p;
