@@ -30,6 +30,7 @@ std::string params_key(const DenoiserConfig& d) {
       unless_default("pd", p.phi_depth, def.phi_depth);
       unless_default("cap", static_cast<float>(p.history_cap), static_cast<float>(def.history_cap));
       if (p.variance_of_mean != def.variance_of_mean) s << (p.variance_of_mean ? " vom" : " novom");
+      if (p.antilag) s << " antilag" << p.antilag_low << '-' << p.antilag_high << '/' << p.antilag_relative;
       break;
     }
     case Method::Wavelet: {
@@ -85,7 +86,9 @@ json params_json(const DenoiserConfig& d) {
               {"alpha", p.alpha},           {"moments_alpha", p.moments_alpha},
               {"phi_color", p.phi_color},   {"phi_normal", p.phi_normal},
               {"phi_depth", p.phi_depth},   {"history_cap", p.history_cap},
-              {"variance_of_mean", p.variance_of_mean}};
+              {"variance_of_mean", p.variance_of_mean}, {"antilag", p.antilag},
+              {"antilag_low", p.antilag_low}, {"antilag_high", p.antilag_high},
+              {"antilag_relative", p.antilag_relative}};
     }
     case Method::Wavelet: {
       const WaveletParams& p = d.wavelet;
@@ -170,6 +173,19 @@ RunConfig svgf_config(Backend backend, Mode mode, int iterations, int feedback_t
   c.denoiser.svgf.iterations = iterations;
   c.denoiser.svgf.feedback_tap = feedback_tap;
   return c;
+}
+
+std::vector<RunConfig> svgf_preset_configs(Backend backend, Mode mode, int threads) {
+  std::vector<RunConfig> v;
+  for (const char* name : {"paper", "converge"}) {
+    RunConfig c = project_config("svgf", backend, mode, threads);
+    c.denoiser.svgf = svgf_preset(name);
+    v.push_back(c);
+  }
+  RunConfig antilag = v.back();
+  antilag.denoiser.svgf.antilag = true;
+  v.push_back(antilag);
+  return v;
 }
 
 RunConfig wavelet_config(Backend backend, Mode mode, int kernel_size, int threads) {

@@ -4,6 +4,7 @@
 // results model joins timings and quality on, and its JSON.
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "bench/baselines.h"
 #include "pipeline/make_denoiser.h"
@@ -29,6 +30,9 @@ struct RunConfig {
 // A --method value with that method's defaults; std::invalid_argument listing the known names.
 RunConfig run_config(const std::string& method);
 RunConfig svgf_config(Backend backend, Mode mode, int iterations, int feedback_tap, int threads);
+// SVGF's named configurations beside the defaults (methods/svgf/params.h: svgf_preset): the
+// paper's, converge, and converge with the anti-lag.
+std::vector<RunConfig> svgf_preset_configs(Backend backend, Mode mode, int threads);
 // The CIS 565 wavelet filter at its defaults but for the kernel size (3, 5, 7, 9).
 RunConfig wavelet_config(Backend backend, Mode mode, int kernel_size, int threads);
 // The JBF at its defaults: the full window (levels 0, method jbf) or the a-trous form with

@@ -334,6 +334,8 @@ int run_cpu_suite(const SuiteOptions& o, SuiteWriter& w) {
     for (auto [it, tap] : chart_params())
       timed(w, "chart", svgf_config(Backend::Cpu, Mode::Exact, it, tap, all),
             frames.get(o.chart_size), o.timing, ceilings[all]);
+    for (const RunConfig& c : svgf_preset_configs(Backend::Cpu, Mode::Exact, all))
+      timed(w, "chart", c, frames.get(o.chart_size), o.timing, ceilings[all]);
     w.finish_section("chart");
   }
   if (wanted(o, "coverage")) {  // every pixel a surface: camera-pan's closed room
@@ -386,6 +388,8 @@ int run_cpu_suite(const SuiteOptions& o, SuiteWriter& w) {
     configs.push_back(noisy);
     for (auto [it, tap] : chart_params())
       configs.push_back(svgf_config(Backend::Cpu, Mode::Exact, it, tap, all));
+    for (const RunConfig& c : svgf_preset_configs(Backend::Cpu, Mode::Exact, all))
+      configs.push_back(c);
     for (const RunConfig& c : study_configs(Backend::Cpu, Mode::Exact, all)) configs.push_back(c);
     for (const RunConfig& c : jbf_configs(Backend::Cpu, Mode::Exact, all)) configs.push_back(c);
     for (const RunConfig& c : bmfr_configs(Backend::Cpu, all)) configs.push_back(c);
@@ -455,10 +459,13 @@ int run_gpu_suite(const SuiteOptions& o, SuiteWriter& w) {
     w.finish_section("blocks");
   }
   if (wanted(o, "chart")) {
-    for (Mode m : {Mode::Exact, Mode::Fast})
+    for (Mode m : {Mode::Exact, Mode::Fast}) {
       for (auto [it, tap] : chart_params())
         timed(w, "chart", svgf_config(Backend::Cuda, m, it, tap, 0), frames.get(o.chart_size),
               o.timing, ceilings);
+      for (const RunConfig& c : svgf_preset_configs(Backend::Cuda, m, 0))
+        timed(w, "chart", c, frames.get(o.chart_size), o.timing, ceilings);
+    }
     w.finish_section("chart");
   }
   if (wanted(o, "wavelet")) {
@@ -516,6 +523,7 @@ int run_gpu_suite(const SuiteOptions& o, SuiteWriter& w) {
       for (Mode m : {Mode::Exact, Mode::Fast}) {
         for (auto [it, tap] : chart_params())
           configs.push_back(svgf_config(Backend::Cuda, m, it, tap, 0));
+        for (const RunConfig& c : svgf_preset_configs(Backend::Cuda, m, 0)) configs.push_back(c);
         for (const RunConfig& c : study_configs(Backend::Cuda, m, 0)) configs.push_back(c);
         for (const RunConfig& c : jbf_configs(Backend::Cuda, m, 0)) configs.push_back(c);
       }
