@@ -15,9 +15,10 @@ const char* const kMethodParamUsage =
     "  --phi-color X             svgf: luminance edge-stopping (default 10)\n"
     "  --history-cap N           svgf: longest history in frames (default 32)\n"
     "  --variance-of-mean on|off svgf: filter with the accumulated mean's variance (default off)\n"
-    "  --antilag on|off          svgf: shorten a history its 3x3 neighbourhood contradicts (default off)\n"
-    "  --antilag-low D           svgf: ... from D standard errors away (default 3)\n"
-    "  --antilag-high D          svgf: ... all of it from D on (default 6)\n"
+    "  --antilag on|off          svgf: shorten a history its neighbourhood contradicts (default off)\n"
+    "  --antilag-radius R        svgf: ... the (2R+1)^2 neighbourhood, R in 1..3 (default 2)\n"
+    "  --antilag-low D           svgf: ... from D standard errors away (default 4)\n"
+    "  --antilag-high D          svgf: ... all of it from D on (default 8)\n"
     "  --antilag-relative R      svgf: ... tolerance + R x luminance (default 0.05)\n"
     "  --svgf-preset NAME        svgf: default, falcor, paper or converge, set before the flags\n"
     "                            above (docs/svgf.md)\n"
@@ -66,6 +67,7 @@ const std::map<std::string, std::vector<std::string>>& readers() {
       {"antilag-low", {"svgf"}},
       {"antilag-high", {"svgf"}},
       {"antilag-relative", {"svgf"}},
+      {"antilag-radius", {"svgf"}},
 
       {"sigma", {"gaussian"}},
       {"radius", {"gaussian"}},
@@ -125,6 +127,7 @@ void read_method_params(const Options& o, DenoiserConfig& c) {
   p.antilag_low = o.get_float("antilag-low", p.antilag_low);
   p.antilag_high = o.get_float("antilag-high", p.antilag_high);
   p.antilag_relative = o.get_float("antilag-relative", p.antilag_relative);
+  p.antilag_radius = o.get_int("antilag-radius", p.antilag_radius, 1, 3);
   p.history_cap = o.get_int("history-cap", p.history_cap, 1, 4096);
   p.variance_of_mean = o.get_on_off("variance-of-mean", p.variance_of_mean);
   GaussianParams& g = c.gaussian;

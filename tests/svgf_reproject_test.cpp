@@ -107,14 +107,16 @@ void static_sequence_accumulates_mean(const TestDevice& d) {
   REQUIRE(rig.history.plane(0)[0] == float(rig.params.history_cap));
 }
 
-// Issue 12, item 3's fallback: a history that disagrees with this frame's 3x3 neighbourhood
+// Issue 12, item 3's fallback: a history that disagrees with this frame's neighbourhood (5x5)
 // loses a share of its length. A constant frame has no spread, so the tolerance is
 // antilag_relative * max(history, neighbourhood) luminance and the answers are exact.
 void antilag_shortens_contradicted_history(const TestDevice& d) {
   const auto run = [&](bool antilag, float planted) {
     ReprojectRig rig(d, 9, 9);
     rig.params.antilag = antilag;
-    rig.params.antilag_relative = 0.1f;  // low 3, high 6
+    rig.params.antilag_relative = 0.1f;
+    rig.params.antilag_low = 3.f;
+    rig.params.antilag_high = 6.f;
     rig.illum = Image(9, 9, 3, 1.f);
     for (int k = 0; k < 4; ++k) rig.step();  // history 4 of a grey 1 everywhere
     for (int c = 0; c < 3; ++c) rig.prev_color.at(4, 4, c) = planted;

@@ -25,13 +25,15 @@ struct SvgfParams {
   float outlier_sigma = 4.f;
 
   // Anti-lag from the history's disagreement with this frame (methods/svgf/reproject.h): a
-  // history whose luminance lies more than antilag_low standard errors from its 3x3
-  // neighbourhood's mean loses a share of its length, all of it from antilag_high on.
-  // antilag_relative (of the luminance, at least antilag_floor) widens the tolerance for the
-  // bias reprojection and filtering leave.
+  // history whose luminance lies more than antilag_low standard errors from the mean of its
+  // (2 antilag_radius + 1)^2 neighbourhood loses a share of its length, all of it from
+  // antilag_high on. antilag_relative (of the luminance, at least antilag_floor) widens the
+  // tolerance for the bias reprojection and filtering leave. 5x5 and 4..8 fire far less on
+  // still pixels than 3x3 and 3..6 (docs/svgf.md: Anti-lag).
   bool antilag = false;
-  float antilag_low = 3.f;
-  float antilag_high = 6.f;
+  int antilag_radius = 2;
+  float antilag_low = 4.f;
+  float antilag_high = 8.f;
   float antilag_relative = 0.05f;
   float antilag_floor = 1e-3f;
 
@@ -93,6 +95,8 @@ struct SvgfParams {
       fail("albedo_epsilon must be in (0, 1], got " + std::to_string(albedo_epsilon));
     if (history_cap < 1 || history_cap > 4096)
       fail("--history-cap must be in [1, 4096], got " + std::to_string(history_cap));
+    if (antilag_radius < 1 || antilag_radius > 3)
+      fail("--antilag-radius must be in [1, 3], got " + std::to_string(antilag_radius));
     at_least(antilag_low, 0.f, "--antilag-low");
     if (!(std::isfinite(antilag_high) && antilag_high > antilag_low))
       fail("--antilag-high must be finite and > --antilag-low (" + std::to_string(antilag_low) +

@@ -110,15 +110,17 @@ struct ReprojectKernel {
   }
 
   // Anti-lag without gradient samples (issue 12, item 3's fallback): how far the history's
-  // luminance lies from this frame's 3x3 neighbourhood on the same mesh, in standard errors of
+  // luminance lies from this frame's neighbourhood on the same mesh (5x5 by default,
+  // antilag_radius), in standard errors of
   // the difference of the two means (the neighbourhood's sample variance / count, and / length
   // for the history), plus antilag_relative of the larger luminance for the bias any
   // reprojection and filter leave. A still pixel whose history is right lies about 1 away; a
   // moved shadow, a light switched off or a history holding a one-frame outlier lies far out.
   SVGF_HD float history_discrepancy(int x, int y, int i, float l, const History& h) const {
     float n = 0.f, sum = 0.f, sum_sq = 0.f;
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
+    const int r = params.antilag_radius;
+    for (int dy = -r; dy <= r; ++dy)
+      for (int dx = -r; dx <= r; ++dx) {
         const int xq = x + dx, yq = y + dy;
         if (!guides.inside(xq, yq)) continue;
         const int j = guides.index(xq, yq);
