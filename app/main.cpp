@@ -1,4 +1,4 @@
-// svgf: the command-line front end. Subcommands: denoise, info, compare, import (and help).
+// svgf: the command-line front end. Subcommands: denoise, info, compare, import.
 #include <string>
 #include <vector>
 
@@ -19,6 +19,5 @@ int main(int argc, char** argv) {
   svgf::app::add_info_command(app, status);
   svgf::app::add_compare_command(app, status);
   svgf::app::add_import_command(app, status);
-  app.add_subcommand("help", "this text")->callback([&] { throw CLI::CallForHelp(); });
   return svgf::cli::run_main(app, argc, argv, [&] { return status; });
 }

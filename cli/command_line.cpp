@@ -66,14 +66,23 @@ int run_subcommand(const std::string& tool, AddSubcommand add, const std::vector
 
 int run_main(CLI::App& app, int argc, char** argv, const std::function<int()>& run) {
   const std::string tool = app.get_name();
+  std::vector<std::string> args(argv + 1, argv + argc);
+  if (!args.empty() && args[0] == "help") args[0] = "--help";  // `tool help`
   try {
-    if (!parse(app, std::vector<std::string>(argv + 1, argv + argc))) return 0;
+    if (!parse(app, args)) return 0;
     return run();
   } catch (const UsageError& e) {
     const std::vector<CLI::App*> chosen = app.get_subcommands();
+    std::string what = e.what();
+    if (chosen.empty() && !args.empty() && args[0][0] != '-') {  // CLI11: "A subcommand is required"
+      std::string names;
+      for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+        names += (names.empty() ? "" : ", ") + sub->get_name();
+      what = "unknown command '" + args[0] + "' (" + names + ")";
+    }
     const std::string help = tool + (chosen.empty() ? "" : " " + chosen[0]->get_name()) + " --help";
     std::fprintf(stderr, "%s: %s\n(%s lists the options)\n", tool.c_str(),
-                 io::printable(e.what()).c_str(), help.c_str());
+                 io::printable(what).c_str(), help.c_str());
     return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s: error: %s\n", tool.c_str(), io::printable(e.what()).c_str());

@@ -53,8 +53,8 @@ using AddSubcommand = CLI::App* (*)(CLI::App& tool, int& status);
 // status it set, 0 after --help; a bad argument throws UsageError.
 int run_subcommand(const std::string& tool, AddSubcommand add, const std::vector<std::string>& args);
 
-// A tool's main(): parses argv into `app`, then returns `run()` (the status the parsed
-// subcommand set). A UsageError prints "tool: what" and where help is, exit 2; any other
+// A tool's main(): parses argv into `app` (`tool help` is `tool --help`), then returns `run()`
+// (the status the parsed subcommand set). A UsageError prints "tool: what" and where help is, exit 2; any other
 // exception "tool: error: what", exit 1.
 int run_main(CLI::App& app, int argc, char** argv, const std::function<int()>& run);
 

@@ -83,6 +83,7 @@ TEST_CASE("cli: run_main exits 2 for a usage error, 1 for a failure, else the st
   CHECK(Tool().main({"go", "--level", "7"}) == 2);
   CHECK(Tool().main({"go", "--level", "5"}) == 2);
   CHECK(Tool().main({"go", "--level", "4"}) == 1);
-  CHECK(Tool().main({"stop"}) == 2);
+  CHECK(Tool().main({"stop"}) == 2);  // "unknown command 'stop' (go)"
   CHECK(Tool().main({"--help"}) == 0);
+  CHECK(Tool().main({"help"}) == 0);
 }

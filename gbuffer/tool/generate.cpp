@@ -157,7 +157,11 @@ void add_generate(CLI::App& tool, int& status) {
       ->type_name("N")->check(CLI::Range(0, kMaxSpp));
   sub->add_option("--seed", a->seed, "random seed (default 1)")
       ->type_name("S")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Validator(
+          [](std::string& s) {
+            return !s.empty() && s[0] != '-' ? "" : "must be an integer >= 0, got '" + s + "'";
+          },
+          ""));
   sub->add_option("--out", a->out, "output folder (default " + default_fixture_dir() + ")")
       ->type_name("DIR");
   sub->add_flag("--split", a->split, "also the direct and indirect channels");

@@ -13,7 +13,6 @@ int main(int argc, char** argv) {
   add_generate(app, status);
   add_verify(app, status);
   add_list(app, status);
-  app.add_subcommand("help", "this text")->callback([] { throw CLI::CallForHelp(); });
   install_interrupt_handler();
   return svgf::cli::run_main(app, argc, argv, [&] { return status; });
 }
