@@ -3,11 +3,11 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <memory>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <memory>
 #include <regex>
-#include <set>
 
 #include <nlohmann/json.hpp>
 
