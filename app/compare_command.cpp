@@ -4,13 +4,13 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <memory>
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
-#include "app/options.h"
 #include "app/report_images.h"
 #include "app/report_pages.h"
 #include "io/atomic_file.h"
@@ -81,41 +81,27 @@ void write_flip_png(const std::string& path, const Image& map) {
 
 // Where the page goes: --html FILE, else beside --json FILE (with .html for its extension, or
 // FILE.html when that is FILE); none without either.
-std::string page_path(const Options& o) {
-  const std::string json_path = o.get("json", "");
-  if (o.has("html")) {
-    if (o.has("json") && o.get("html", "") == json_path)
+struct CompareArgs {
+  std::string a, b, json, html, diff;
+};
+
+std::string page_path(const CompareArgs& o) {
+  const std::string& json_path = o.json;
+  if (!o.html.empty()) {
+    if (o.html == json_path)
       throw UsageError("--html and --json name the same file '" + json_path + "'");
-    return o.get("html", "");
+    return o.html;
   }
-  if (!o.has("json")) return "";
+  if (json_path.empty()) return "";
   const std::string beside = fs::path(json_path).replace_extension(".html").string();
   return beside == json_path ? json_path + ".html" : beside;
 }
 
-}  // namespace
-
-std::string compare_usage() {
-  return "usage: svgf compare A B [--json FILE] [--html FILE] [--diff DIR]\n"
-         "  PSNR, SSIM, relMSE and FLIP (docs/metrics.md) of A's images against B's, per frame\n"
-         "  and mean. A and B are EXR files or folders of frame_NNNN.exr (matched by name); a\n"
-         "  sequence folder (with manifest.json) as B gives each frame's reference channel.\n"
-         "  --json FILE               also write the numbers as JSON, and a page of plots and\n"
-         "                            images beside it (FILE with .html; docs/report.md)\n"
-         "  --html FILE               write that page as FILE\n"
-         "  --diff DIR                write each frame's FLIP error map as DIR/<name>_flip.png\n";
-}
-
-int compare_command(const std::vector<std::string>& args) {
-  const Options o(args, {"json", "html", "diff"}, {"help"});
-  if (o.has("help")) {
-    std::fputs(compare_usage().c_str(), stdout);
-    return 0;
-  }
-  if (o.positional().size() != 2) throw UsageError("compare takes two paths, A and B");
-  const std::string a = o.positional()[0], b = o.positional()[1];
+int run_compare(const CompareArgs& o) {
+  const std::string& a = o.a;
+  const std::string& b = o.b;
   const std::vector<std::string> names = images_of(a);
-  const std::string diff_dir = o.get("diff", "");
+  const std::string& diff_dir = o.diff;
   const std::string html_path = page_path(o);
   std::vector<std::vector<HtmlImage>> images;
   if (!diff_dir.empty()) fs::create_directories(diff_dir);
@@ -165,12 +151,39 @@ int compare_command(const std::vector<std::string>& args) {
               finite_psnr ? sum[0] / finite_psnr : INFINITY, sum[1] / n, sum[2] / n, sum[3] / n,
               finite_psnr);
   const json report{{"a", a}, {"b", b}, {"frames", frames}, {"mean", mean}};
-  if (o.has("json")) io::write_file_atomically(o.get("json", ""), report.dump(2) + "\n");
+  if (!o.json.empty()) io::write_file_atomically(o.json, report.dump(2) + "\n");
   if (!html_path.empty())
     io::write_file_atomically(
         html_path, html_report(compare_page(report, std::move(images),
                                             html_images_note(static_cast<int>(names.size())))));
   return 0;
+}
+
+}  // namespace
+
+CLI::App* add_compare_command(CLI::App& svgf, int& status) {
+  auto o = std::make_shared<CompareArgs>();
+  CLI::App* sub = svgf.add_subcommand(
+      "compare", "PSNR, SSIM, relMSE and FLIP of A's frames against B's");
+  sub->footer(
+      "PSNR, SSIM, relMSE and FLIP (docs/metrics.md) of A's images against B's, per frame and\n"
+      "mean. A and B are EXR files or folders of frame_NNNN.exr (matched by name); a sequence\n"
+      "folder (with manifest.json) as B gives each frame's reference channel.");
+  sub->add_option("A", o->a, "an EXR file or a folder of frame_NNNN.exr")->required();
+  sub->add_option("B", o->b, "the same, or a sequence folder (its reference channel)")->required();
+  sub->add_option("--json", o->json,
+                  "also write the numbers as JSON, and a page of plots and images beside it "
+                  "(FILE with .html; docs/report.md)")
+      ->type_name("FILE");
+  sub->add_option("--html", o->html, "write that page as FILE")->type_name("FILE");
+  sub->add_option("--diff", o->diff, "write each frame's FLIP error map as DIR/<name>_flip.png")
+      ->type_name("DIR");
+  sub->callback([o, &status] { status = run_compare(*o); });
+  return sub;
+}
+
+int compare_command(const std::vector<std::string>& args) {
+  return cli::run_subcommand("svgf", add_compare_command, args);
 }
 
 }  // namespace svgf::app

@@ -2,11 +2,9 @@
 #include "app/denoise_command.h"
 
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
-#include <set>
 #include <stdexcept>
 #include <string>
 
@@ -14,7 +12,6 @@
 #include "app/frame_order.h"
 #include "app/interrupt.h"
 #include "app/method_options.h"
-#include "app/options.h"
 #include "app/report_images.h"
 #include "app/run_report.h"
 #include "cli/progress_bar.h"
@@ -33,10 +30,7 @@ namespace svgf::app {
 
 namespace {
 
-// The options before and after the method parameters (app/method_options.h).
-const char* const kUsageHead =
-    "usage: svgf denoise IN_DIR OUT_DIR [options]\n"
-    "\n"
+const char* const kDescription =
     "Denoises the sequence in IN_DIR (frame_NNNN.exr + manifest.json) into OUT_DIR:\n"
     "frame_NNNN.exr (linear RGB), preview/ PNGs (noisy | denoised | reference), report.json\n"
     "and report.csv (per-frame time, replaced samples, PSNR and relMSE against the reference),\n"
@@ -47,38 +41,26 @@ const char* const kUsageHead =
     "The run is written beside OUT_DIR and replaces it as a whole only when it succeeds\n"
     "(OUT_DIR must be absent, empty or an earlier output); a failed run leaves OUT_DIR as\n"
     "it was and says what failed in OUT_DIR.failed-report.json (exit 1; 130 or 143 when\n"
-    "SIGINT or SIGTERM stopped it).\n"
-    "\n"
-    "options:\n"
-    "  --method M                svgf, gaussian, wavelet, jbf, jbf-atrous, bmfr (default svgf)\n"
-    "  --backend cpu|cuda|auto   where to run (default auto: CUDA if a device is present)\n"
-    "  --mode exact|fast         exact: bitwise CPU == GPU; fast: GPU only (default exact)\n"
-    "  --threads N               CPU threads, 0 = all cores (default 0)\n"
-    "  --frames N                denoise only the first N frames (by frame number)\n";
-const char* const kUsageTail =
-    "  --exposure E              preview exposure (default 1)\n"
-    "  --no-verify               skip checking each frame file's SHA-256 against the manifest\n"
-    "                            (checked for every frame before any output by default)\n"
-    "  --no-preview              skip the PNG previews (in preview/ and in report.html)\n";
+    "SIGINT or SIGTERM stopped it).";
 
-}  // namespace
+struct DenoiseArgs {
+  std::string in_dir, out_dir, method = "svgf", backend = "auto", mode = "exact";
+  int threads = 0, frames = 1 << 20;
+  float exposure = 1.f;
+  bool no_preview = false, no_verify = false;
+  MethodParamFlags params;
+};
 
-std::string denoise_usage() {
-  return std::string(kUsageHead) + kMethodParamUsage + kUsageTail;
-}
-
-namespace {
-
-DenoiserConfig config_from(const Options& o) {
+DenoiserConfig config_from(const DenoiseArgs& a) {
   DenoiserConfig c;
-  c.method = parse_method(o.get("method", "svgf"));
-  c.backend = parse_backend(o.get("backend", "auto"));
-  c.mode = parse_mode(o.get("mode", "exact"));
-  c.threads = o.get_int("threads", 0, 0, 1024);
+  c.method = parse_method(a.method);
+  c.backend = parse_backend(a.backend);
+  c.mode = parse_mode(a.mode);
+  c.threads = a.threads;
   // A flag the chosen method does not read is an error, not silently ignored: the report
   // would otherwise describe a setting that was never used.
-  check_params_apply(o, to_string(c.method));
-  read_method_params(o, c);
+  a.params.check_apply(to_string(c.method));
+  a.params.read(c);
   return c;
 }
 
@@ -220,38 +202,26 @@ void run(const RunSettings& s, Denoiser& denoiser, RunProgress& progress) {
   report.print_summary(s.in_dir, s.out_dir, denoiser.description());
 }
 
-}  // namespace
-
-int denoise_command(const std::vector<std::string>& args) {
-  std::set<std::string> valued = {"method", "backend", "mode", "threads", "frames", "exposure"};
-  valued.insert(method_param_flags().begin(), method_param_flags().end());
-  const Options o(args, valued, {"no-preview", "no-verify", "help"});
-  if (o.has("help")) {
-    std::fputs(denoise_usage().c_str(), stdout);
-    return 0;
-  }
-  if (o.positional().size() != 2) throw UsageError("denoise needs IN_DIR and OUT_DIR");
+int run_denoise(const DenoiseArgs& a) {
   RunSettings settings;
-  settings.in_dir = o.positional()[0];
-  check_folders_apart(settings.in_dir, o.positional()[1]);
-  settings.out_dir = output_folder(o.positional()[1]);
+  settings.in_dir = a.in_dir;
+  check_folders_apart(settings.in_dir, a.out_dir);
+  settings.out_dir = output_folder(a.out_dir);
   // Every argument is checked before anything is read or written: a bad value or an impossible
   // combination (fast mode on the CPU) is a usage error, exit 2.
   DenoiserConfig config;
   std::unique_ptr<Denoiser> denoiser;
   try {
-    config = config_from(o);
+    config = config_from(a);
     denoiser = make_denoiser(config);
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
   settings.requested_backend = config.backend;
-  settings.exposure = o.get_float("exposure", 1.f);
-  if (!(settings.exposure > 0.f) || !std::isfinite(settings.exposure))
-    throw UsageError("--exposure must be a finite number > 0, got '" + o.get("exposure", "") + "'");
-  settings.previews = !o.has("no-preview");
-  settings.verify = !o.has("no-verify");
-  settings.frame_limit = o.get_int("frames", 1 << 20, 1, 1 << 20);
+  settings.exposure = a.exposure;
+  settings.previews = !a.no_preview;
+  settings.verify = !a.no_verify;
+  settings.frame_limit = a.frames;
 
   // From here on a failure leaves OUT_DIR as it was and says what failed beside it.
   RunProgress progress;
@@ -272,6 +242,45 @@ int denoise_command(const std::vector<std::string>& args) {
                    io::printable(failure_report_path(settings.out_dir)).c_str());
     throw;
   }
+}
+
+}  // namespace
+
+CLI::App* add_denoise_command(CLI::App& svgf, int& status) {
+  auto a = std::make_shared<DenoiseArgs>();
+  CLI::App* sub = svgf.add_subcommand("denoise", "denoise a frame sequence");
+  sub->footer(kDescription);
+  sub->add_option("IN_DIR", a->in_dir, "the sequence: frame_NNNN.exr + manifest.json")->required();
+  sub->add_option("OUT_DIR", a->out_dir, "the output folder, replaced as a whole")->required();
+  sub->add_option("--method", a->method,
+                  "svgf, gaussian, wavelet, jbf, jbf-atrous, bmfr (default svgf)")
+      ->type_name("M")
+      ->check(cli::accepted_by(parse_method));
+  sub->add_option("--backend", a->backend,
+                  "where to run (default auto: CUDA if a device is present)")
+      ->type_name("cpu|cuda|auto")
+      ->check(cli::accepted_by(parse_backend));
+  sub->add_option("--mode", a->mode, "exact: bitwise CPU == GPU; fast: GPU only (default exact)")
+      ->type_name("exact|fast")
+      ->check(cli::accepted_by(parse_mode));
+  sub->add_option("--threads", a->threads, "CPU threads, 0 = all cores (default 0)")
+      ->type_name("N")->check(CLI::Range(0, 1024));
+  sub->add_option("--frames", a->frames, "denoise only the first N frames (by frame number)")
+      ->type_name("N")->check(CLI::Range(1, 1 << 20));
+  sub->add_option("--exposure", a->exposure, "preview exposure, finite and > 0 (default 1)")
+      ->type_name("E")->check(cli::PositiveFinite);
+  sub->add_flag("--no-verify", a->no_verify,
+                "skip checking each frame file's SHA-256 against the manifest (checked for "
+                "every frame before any output by default)");
+  sub->add_flag("--no-preview", a->no_preview,
+                "skip the PNG previews (in preview/ and in report.html)");
+  a->params.add_to(*sub);
+  sub->callback([a, &status] { status = run_denoise(*a); });
+  return sub;
+}
+
+int denoise_command(const std::vector<std::string>& args) {
+  return cli::run_subcommand("svgf", add_denoise_command, args);
 }
 
 }  // namespace svgf::app

@@ -2,7 +2,7 @@
 
 #include <filesystem>
 
-#include "app/options.h"
+#include "app/usage_error.h"
 #include "io/staged_folder.h"
 
 namespace fs = std::filesystem;

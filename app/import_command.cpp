@@ -5,15 +5,15 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <memory>
 #include <regex>
-#include <set>
 
 #include <nlohmann/json.hpp>
 
 #include "app/folder_checks.h"
 #include "app/import_frame.h"
 #include "app/interrupt.h"
-#include "app/options.h"
 #include "cli/progress_bar.h"
 #include "io/atomic_file.h"
 #include "io/printable.h"
@@ -50,16 +50,20 @@ std::vector<int> parse_frames(const std::string& s) {
   return frames;
 }
 
+struct ImportArgs {
+  std::string in_dir, out_dir, preset, map, frames;
+  int spp = 1, reference_spp = 0;
+  CLI::Option* reference_spp_option = nullptr;
+  std::map<std::string, std::string> buffers;  // a pattern for each buffer key
+  std::map<std::string, CLI::Option*> buffer_options;
+};
+
 // Patterns from the preset, then the mapping file, then the flags (each overriding the last).
-std::map<std::string, std::string> patterns_from(const Options& o, std::string& frames_spec) {
+std::map<std::string, std::string> patterns_from(const ImportArgs& o, std::string& frames_spec) {
   std::map<std::string, std::string> patterns;
-  if (o.has("preset")) {
-    if (o.get("preset", "") != "games202")
-      throw UsageError("--preset: unknown preset '" + o.get("preset", "") + "' (games202)");
-    patterns = kGames202;
-  }
-  if (o.has("map")) {
-    const std::string path = o.get("map", "");
+  if (!o.preset.empty()) patterns = kGames202;  // the only preset (a validator says so)
+  if (!o.map.empty()) {
+    const std::string& path = o.map;
     std::ifstream in(path);
     if (!in) throw UsageError("--map: cannot read '" + path + "'");
     nlohmann::json j;
@@ -81,8 +85,8 @@ std::map<std::string, std::string> patterns_from(const Options& o, std::string& 
     }
   }
   for (const std::string& key : import_buffer_keys())
-    if (o.has(key)) patterns[key] = o.get(key, "");
-  if (o.has("frames")) frames_spec = o.get("frames", "");
+    if (o.buffer_options.at(key)->count()) patterns[key] = o.buffers.at(key);
+  if (!o.frames.empty()) frames_spec = o.frames;
   for (const char* needed : {"color", "normal"})
     if (!patterns.count(needed))
       throw UsageError(std::string("no pattern for the ") + needed + " buffer (--" + needed +
@@ -178,48 +182,16 @@ nlohmann::ordered_json report_of(const Run& run, const ImportNotes& notes) {
   return j;
 }
 
-}  // namespace
-
-std::string import_usage() {
-  return "usage: svgf import IN_DIR OUT_DIR [options]\n"
-         "  Turns per-buffer image files (.exr, .hdr, .pfm) into a sequence in OUT_DIR\n"
-         "  (docs/import.md). Patterns are file names relative to IN_DIR with {N} for the frame\n"
-         "  number ({N:4}: zero-padded to 4 digits); a pattern without {N} is one frame (0).\n"
-         "  Every file is checked before anything is written; OUT_DIR (absent, empty or a\n"
-         "  sequence) is replaced as a whole, with OUT_DIR/import.json saying what was derived.\n"
-         "\n"
-         "buffers (color and normal required):\n"
-         "  --color P --albedo P --normal P --depth P --depth-gradient P --position P\n"
-         "  --motion P (pixels to the previous frame, +y down) --id P (object ids from 0,\n"
-         "  negative = background) --emission P --reference P\n"
-         "  --matrices P              GAMES202 matrix_N.mat: motion (and depth) from matrices\n"
-         "options:\n"
-         "  --preset games202         beauty_{N}.exr normal_{N}.exr position_{N}.exr\n"
-         "                            depth_{N}.exr ID_{N}.exr matrix_{N}.mat\n"
-         "  --map FILE                JSON object: the buffer keys above (and \"frames\") -> patterns\n"
-         "  --frames A..B             frame numbers (default: every N whose color file exists)\n"
-         "  --spp N --reference-spp N what the manifest says (default 1; 0 without a reference)\n"
-         "Absent albedo is 1, depth gradient is derived from depth, motion from matrices or 0,\n"
-         "mesh ids from --id or depth > 0; each is named in import.json and warned about.\n";
-}
-
-int import_command(const std::vector<std::string>& args) {
-  std::set<std::string> valued = {"preset", "map", "frames", "spp", "reference-spp"};
-  for (const std::string& key : import_buffer_keys()) valued.insert(key);
-  const Options o(args, valued, {"help"});
-  if (o.has("help")) {
-    std::fputs(import_usage().c_str(), stdout);
-    return 0;
-  }
-  if (o.positional().size() != 2) throw UsageError("import needs IN_DIR and OUT_DIR");
+int run_import(const ImportArgs& o) {
   Run run;
-  run.spec.in_dir = o.positional()[0];
+  run.spec.in_dir = o.in_dir;
   std::string frames_spec;
   run.spec.patterns = patterns_from(o, frames_spec);
-  check_folders_apart(run.spec.in_dir, o.positional()[1]);
-  run.out_dir = output_folder(o.positional()[1]);
-  run.spp = o.get_int("spp", 1, 1, 1 << 20);
-  run.reference_spp = o.get_int("reference-spp", run.spec.patterns.count("reference") ? 1 : 0, 0, 1 << 20);
+  check_folders_apart(run.spec.in_dir, o.out_dir);
+  run.out_dir = output_folder(o.out_dir);
+  run.spp = o.spp;
+  run.reference_spp = o.reference_spp_option->count() ? o.reference_spp
+                                                       : run.spec.patterns.count("reference") ? 1 : 0;
   if (run.reference_spp > 0 && !run.spec.patterns.count("reference"))
     throw UsageError("--reference-spp without a --reference pattern");
   const std::string& color = run.spec.patterns.at("color");
@@ -259,6 +231,64 @@ int import_command(const std::vector<std::string>& args) {
     std::fprintf(stderr, "svgf: %s; %s left as it was\n", e.what(), io::printable(run.out_dir).c_str());
     return 128 + e.signal_number();
   }
+}
+
+}  // namespace
+
+CLI::App* add_import_command(CLI::App& svgf, int& status) {
+  auto o = std::make_shared<ImportArgs>();
+  CLI::App* sub = svgf.add_subcommand(
+      "import", "per-buffer files (EXR, .hdr, PFM; GAMES202) into a sequence");
+  sub->footer(
+      "Turns per-buffer image files (.exr, .hdr, .pfm) into a sequence in OUT_DIR\n"
+      "(docs/import.md). Patterns are file names relative to IN_DIR with {N} for the frame\n"
+      "number ({N:4}: zero-padded to 4 digits); a pattern without {N} is one frame (0).\n"
+      "Every file is checked before anything is written; OUT_DIR (absent, empty or a\n"
+      "sequence) is replaced as a whole, with OUT_DIR/import.json saying what was derived.\n"
+      "Absent albedo is 1, depth gradient is derived from depth, motion from matrices or 0,\n"
+      "mesh ids from --id or depth > 0; each is named in import.json and warned about.");
+  sub->add_option("IN_DIR", o->in_dir, "the folder the patterns are relative to")->required();
+  sub->add_option("OUT_DIR", o->out_dir, "the sequence folder, replaced as a whole")->required();
+  const std::map<std::string, std::string> what = {
+      {"color", "noisy color (required)"},
+      {"normal", "world normals (required)"},
+      {"motion", "pixels to the previous frame, +y down"},
+      {"id", "object ids from 0, negative = background"},
+      {"matrices", "GAMES202 matrix_N.mat: motion (and depth) from matrices"}};
+  for (const std::string& key : import_buffer_keys()) {
+    const auto it = what.find(key);
+    o->buffer_options[key] =
+        sub->add_option("--" + key, o->buffers[key],
+                        "pattern of the " + key + " buffer" +
+                            (it == what.end() ? std::string() : ": " + it->second))
+            ->type_name("P")
+            ->group("buffers (color and normal required)");
+  }
+  sub->add_option("--preset", o->preset,
+                  "games202: beauty_{N}.exr normal_{N}.exr position_{N}.exr depth_{N}.exr "
+                  "ID_{N}.exr matrix_{N}.mat")
+      ->type_name("NAME")
+      ->check(CLI::IsMember({"games202"}));
+  sub->add_option("--map", o->map,
+                  "JSON object: the buffer keys above (and \"frames\") -> patterns")
+      ->type_name("FILE");
+  sub->add_option("--frames", o->frames,
+                  "frame numbers (default: every N whose color file exists)")
+      ->type_name("A..B");
+  sub->add_option("--spp", o->spp, "what the manifest says (default 1)")
+      ->type_name("N")
+      ->check(CLI::Range(1, 1 << 20));
+  o->reference_spp_option =
+      sub->add_option("--reference-spp", o->reference_spp,
+                      "what the manifest says (default 1; 0 without a reference)")
+          ->type_name("N")
+          ->check(CLI::Range(0, 1 << 20));
+  sub->callback([o, &status] { status = run_import(*o); });
+  return sub;
+}
+
+int import_command(const std::vector<std::string>& args) {
+  return cli::run_subcommand("svgf", add_import_command, args);
 }
 
 }  // namespace svgf::app

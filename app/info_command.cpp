@@ -5,13 +5,13 @@
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <memory>
 #include <string>
 #include <utility>
 
 #include <nlohmann/json.hpp>
 
 #include "app/input_warnings.h"
-#include "app/options.h"
 #include "io/atomic_file.h"
 #include "io/printable.h"
 #include "io/sequence.h"
@@ -78,22 +78,14 @@ std::string fixed(double v) {
 
 }  // namespace
 
-std::string info_usage() {
-  return "usage: svgf info SEQ [--json FILE]\n"
-         "  what the sequence folder SEQ holds: size, frames, channels with their value ranges\n"
-         "  and non-finite counts, surface coverage; each frame file checked against the\n"
-         "  manifest's SHA-256. Exit 0 when every frame reads and matches, 1 otherwise.\n"
-         "  --json FILE               also write the findings as JSON\n";
-}
+namespace {
 
-int info_command(const std::vector<std::string>& args) {
-  const Options o(args, {"json"}, {"help"});
-  if (o.has("help")) {
-    std::fputs(info_usage().c_str(), stdout);
-    return 0;
-  }
-  if (o.positional().size() != 1) throw UsageError("info takes one folder, SEQ");
-  const std::string dir = o.positional()[0];
+struct InfoArgs {
+  std::string dir, json;
+};
+
+int run_info(const InfoArgs& a) {
+  const std::string& dir = a.dir;
   const io::Sequence seq(dir);  // the manifest: an IoError naming it when missing or bad
   const io::Manifest& m = seq.manifest();
 
@@ -180,8 +172,28 @@ int info_command(const std::vector<std::string>& args) {
   std::printf("  %s\n", failed == 0 ? "every frame reads and matches the manifest"
                                     : (std::to_string(failed) + " of " +
                                        std::to_string(seq.size()) + " frames failed").c_str());
-  if (o.has("json")) io::write_file_atomically(o.get("json", ""), report.dump(2) + "\n");
+  if (!a.json.empty()) io::write_file_atomically(a.json, report.dump(2) + "\n");
   return failed == 0 ? 0 : 1;
+}
+
+}  // namespace
+
+CLI::App* add_info_command(CLI::App& svgf, int& status) {
+  auto a = std::make_shared<InfoArgs>();
+  CLI::App* sub = svgf.add_subcommand(
+      "info", "what a sequence holds, checked against its manifest");
+  sub->footer(
+      "What the sequence folder SEQ holds: size, frames, channels with their value ranges and\n"
+      "non-finite counts, surface coverage; each frame file checked against the manifest's\n"
+      "SHA-256. Exit 0 when every frame reads and matches, 1 otherwise.");
+  sub->add_option("SEQ", a->dir, "a sequence folder (manifest.json + frames)")->required();
+  sub->add_option("--json", a->json, "also write the findings as JSON")->type_name("FILE");
+  sub->callback([a, &status] { status = run_info(*a); });
+  return sub;
+}
+
+int info_command(const std::vector<std::string>& args) {
+  return cli::run_subcommand("svgf", add_info_command, args);
 }
 
 }  // namespace svgf::app

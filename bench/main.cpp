@@ -4,14 +4,14 @@
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <nlohmann/json.hpp>
-#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "app/method_options.h"
-#include "app/options.h"
+#include "cli/command_line.h"
 #include "bench/baselines.h"
 #include "bench/chart_data.h"
 #include "bench/gpu_probe.h"
@@ -23,55 +23,23 @@
 #include "io/printable.h"
 
 namespace fs = std::filesystem;
-using svgf::app::kMethodParamUsage;
-using svgf::app::Options;
-using svgf::app::UsageError;
+using svgf::cli::UsageError;
 using json = nlohmann::json;
 
 namespace {
 
-// The options before and after the method parameters (app/method_options.h).
-const char* const kUsageHead =
-    "usage: svgf-bench [run] [options]          one configuration, timed (and measured)\n"
-    "       svgf-bench suite cpu|gpu [options]   the suites behind docs/benchmarks.md\n"
-    "       svgf-bench chart-data RESULTS_DIR [--out DIR] [--targets FILE]\n"
-    "                                            tables for bench/chart.sh and summary.md, with\n"
-    "                                            each target's verdict (default: the source\n"
-    "                                            tree's bench/targets.json)\n"
-    "       svgf-bench --help\n"
-    "\n"
-    "run: times every stage of the method, by its own stage names (CUDA events on the GPU, a\n"
-    "steady clock on the CPU) over --frames frames after --warmup frames, and prints per stage\n"
-    "and per frame the median and p95, megapixels per second and the peak device memory; for\n"
-    "the stages the cost model counts (bench/stage_cost.cpp: every svgf and bmfr stage, the\n"
-    "filter stage of jbf, jbf-atrous and wavelet) also the bytes and operations the stage must\n"
-    "move and do, the achieved bandwidth against the measured copy bandwidth, the share of the\n"
-    "measured float rate, the floor and, for a filter's taps, the time a tap (other stages:\n"
-    "n/a).\n"
-    "  --method M            a project method, as `svgf denoise`: svgf (default), wavelet,\n"
-    "                        gaussian, jbf, jbf-atrous, bmfr; or an OpenCV baseline:\n"
-    "                        (CPU) cv-gaussian, cv-bilateral, cv-joint-bilateral, cv-nlmeans\n"
-    "  --backend cpu|cuda    (default cpu)\n"
-    "  --mode exact|fast     fast exists on cuda only (default exact)\n"
-    "  --threads N           CPU threads, 0 = all cores (default 0)\n"
-    "  --size S              generated frames: 720p, 1080p, 4k, N (square) or WxH (default 720p)\n"
-    "  --fixture DIR         a fixture sequence instead of generated frames\n"
-    "  --scene NAME          scene rendered for --size (default cornell-moving)\n"
-    "  --distinct-frames K   frames rendered for --size, played cyclically (default 8)\n"
-    "  --cache DIR           where rendered frames are kept between runs ('' = none)\n"
-    "  --frames N            timed frames (default 100)\n"
-    "  --warmup N            untimed frames first (default 10)\n"
-    "  --budget-s S          stop timing after S seconds once 10 frames are timed (default none)\n"
-    "  --block WxH           CUDA block shape (default 32x8)\n"
-    "  --quality             with --fixture: per-frame PSNR, SSIM, relMSE, FLIP and temporal\n"
-    "                        stability against the reference\n"
-    "  --json PATH           write the results as JSON\n"
-    "  --no-ceilings         skip measuring the copy bandwidth and float rate (for profilers)\n"
-    "method parameters (as `svgf denoise`; a flag the method does not read is an error):\n";
-const char* const kUsageTail =
-    "\n"
-    "suite: cpu (sections sizes, chart, coverage, baselines, wavelet, jbf, bmfr, quality) or\n"
-    "gpu (sizes, iterations, coverage, blocks, chart, wavelet, jbf, bmfr, quality); results go to\n"
+const char* const kRunFooter =
+    "Times every stage of the method, by its own stage names (CUDA events on the GPU, a steady\n"
+    "clock on the CPU) over --frames frames after --warmup frames, and prints per stage and per\n"
+    "frame the median and p95, megapixels per second and the peak device memory; for the stages\n"
+    "the cost model counts (bench/stage_cost.cpp: every svgf and bmfr stage, the filter stage of\n"
+    "jbf, jbf-atrous and wavelet) also the bytes and operations the stage must move and do, the\n"
+    "achieved bandwidth against the measured copy bandwidth, the share of the measured float\n"
+    "rate, the floor and, for a filter's taps, the time a tap (other stages: n/a).\n"
+    "`svgf-bench [options]` without a subcommand is `svgf-bench run [options]`.";
+const char* const kSuiteFooter =
+    "cpu (sections sizes, chart, coverage, baselines, wavelet, jbf, bmfr, quality) or gpu\n"
+    "(sizes, iterations, coverage, blocks, chart, wavelet, jbf, bmfr, quality); results go to\n"
     "OUT/<suite>.json, where a rerun replaces the entries it measures again (same section,\n"
     "configuration and input) and keeps the rest. wavelet: the CIS 565 kernel sizes 3, 5, 7, 9\n"
     "(4 passes) beside a 9x9 Gaussian (radius 4, sigma 4/3) and a dense 9x9 edge-stopping\n"
@@ -82,20 +50,7 @@ const char* const kUsageTail =
     "camera-pan (full coverage; cpu: at the chart size on 2 threads and all, beside svgf on 2\n"
     "threads; gpu: at the iterations size). The quality section measures all of them; gpu\n"
     "checks cpu exact == cuda exact for svgf, wavelet 5x5, jbf, jbf-atrous and bmfr (both\n"
-    "strategies).\n"
-    "  --out DIR             (default docs/bench)\n"
-    "  --sections A,B        only these sections\n"
-    "  --sizes A,B           sizes of the sizes section (default 256,720p,1080p,4k)\n"
-    "  --chart-size S        size of the chart and baseline timings (default 720p)\n"
-    "  --iterations-size S   size of the gpu iterations, coverage and blocks sections, of\n"
-    "                        the jbf section's level study and bmfr's camera-pan (default\n"
-    "                        1080p)\n"
-    "  --fixtures DIR        fixture folders for the quality section (default fixtures)\n"
-    "  --frames, --warmup, --scene, --distinct-frames, --cache as for run\n"
-    "  --baseline-budget-s S time budget per baseline, CPU wavelet and CPU jbf timing, which\n"
-    "                        also warm up 2 frames only (default 120)\n";
-
-std::string usage() { return std::string(kUsageHead) + kMethodParamUsage + kUsageTail; }
+    "strategies).";
 
 std::vector<std::string> split_commas(const std::string& s) {
   std::vector<std::string> v;
@@ -123,59 +78,64 @@ void parse_block(const std::string& s, int& x, int& y) {
     throw UsageError("--block must be WxH, got '" + s + "'");
 }
 
-svgf::bench::TimingOptions timing_from(const Options& o) {
-  svgf::bench::TimingOptions t;
-  t.frames = o.get_int("frames", t.frames, 1, 1 << 20);
-  t.warmup = o.get_int("warmup", t.warmup, 0, 1 << 20);
-  t.budget_s = o.get_float("budget-s", 0.f);
-  return t;
+// --frames, --warmup, --budget-s: run's and suite's.
+void add_timing(CLI::App& app, svgf::bench::TimingOptions& t) {
+  app.add_option("--frames", t.frames, "timed frames (default 100)")
+      ->type_name("N")->check(CLI::Range(1, 1 << 20));
+  app.add_option("--warmup", t.warmup, "untimed frames first (default 10)")
+      ->type_name("N")->check(CLI::Range(0, 1 << 20));
+  app.add_option("--budget-s", t.budget_s,
+                 "stop timing after S seconds once 10 frames are timed (default none)")
+      ->type_name("S")->check(CLI::Range(0.0, 1e9));
 }
 
-int run_command(const std::vector<std::string>& args, const std::string& command) {
+struct RunArgs {
+  std::string method = "svgf", backend = "cpu", mode = "exact", size = "720p", fixture,
+              scene = "cornell-moving", cache = SVGF_BENCH_CACHE_DIR, block, json;
+  int threads = 0, distinct_frames = 8;
+  bool quality = false, no_ceilings = false;
+  svgf::bench::TimingOptions timing;
+  svgf::app::MethodParamFlags params;
+  std::string command;
+};
+
+int run_command(const RunArgs& a) {
   using namespace svgf;
   using namespace svgf::app;
   using namespace svgf::bench;
-  std::set<std::string> valued = {
-      "method",          "backend", "mode",   "threads", "size",     "fixture", "scene",
-      "distinct-frames", "cache",   "frames", "warmup",  "budget-s", "block",   "json"};
-  valued.insert(method_param_flags().begin(), method_param_flags().end());
-  const Options o(args, valued, {"quality", "no-ceilings", "help"});
-  if (!o.positional().empty()) throw UsageError("unexpected argument '" + o.positional()[0] + "'");
   RunConfig c;
   try {
-    c = run_config(o.get("method", "svgf"));
+    c = run_config(a.method);
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
-  check_params_apply(o, c.method);
-  read_method_params(o, c.denoiser);
-  c.denoiser.backend = parse_backend(o.get("backend", "cpu"));
-  c.denoiser.mode = parse_mode(o.get("mode", "exact"));
-  c.denoiser.threads = o.get_int("threads", 0, 0, 1024);
-  if (o.has("block")) parse_block(o.get("block", ""), c.denoiser.block_x, c.denoiser.block_y);
+  a.params.check_apply(c.method);
+  a.params.read(c.denoiser);
+  c.denoiser.backend = parse_backend(a.backend);
+  c.denoiser.mode = parse_mode(a.mode);
+  c.denoiser.threads = a.threads;
+  if (!a.block.empty()) parse_block(a.block, c.denoiser.block_x, c.denoiser.block_y);
   if (!c.project() && c.denoiser.backend != Backend::Cpu)
     throw UsageError("the OpenCV baselines run on the CPU only");
 
   FrameSet frames;
-  if (o.has("fixture")) {
-    frames = load_fixture(o.get("fixture", ""));
+  if (!a.fixture.empty()) {
+    frames = load_fixture(a.fixture);
   } else {
     int w = 0, h = 0;
-    parse_size(o.get("size", "720p"), w, h);
-    frames = generate_frames(o.get("scene", "cornell-moving"), w, h,
-                             o.get_int("distinct-frames", 8, 1, 1000),
-                             o.get("cache", SVGF_BENCH_CACHE_DIR));
+    parse_size(a.size, w, h);
+    frames = generate_frames(a.scene, w, h, a.distinct_frames, a.cache);
   }
 
   json doc;
   doc["suite"] = "run";
-  doc["command"] = command;
+  doc["command"] = a.command;
   const HostInfo host = query_host();
   doc["host"] = {{"cpu_model", host.cpu_model},
                  {"hardware_threads", host.hardware_threads},
                  {"load", host.load}};
   Ceilings ceilings;
-  if (o.has("no-ceilings")) {
+  if (a.no_ceilings) {
     // No measurement (e.g. under a profiler): bandwidth shares and floors print as 0.
   } else if (c.cuda()) {
     DeviceInfo d = query_device();
@@ -194,76 +154,145 @@ int run_command(const std::vector<std::string>& args, const std::string& command
     ceilings.ops_per_s = host_float_ops_per_s(t);
     ceilings.copy_what = "memcpy of 256 MiB on " + std::to_string(t) + " thread(s)";
   }
-  json entry = time_run(c, frames, timing_from(o), ceilings);
+  json entry = time_run(c, frames, a.timing, ceilings);
   print_timing(entry, stdout);
   doc["timings"] = json::array({entry});
   doc["quality"] = json::array();
-  if (o.has("quality")) {
+  if (a.quality) {
     if (!frames.has_reference()) throw UsageError("--quality needs a --fixture with a reference");
     json q = quality_run(c, frames);
     print_quality(q, stdout);
     doc["quality"].push_back(q);
   }
-  if (o.has("json")) {
-    const std::string path = o.get("json", ""), text = doc.dump(1) + "\n";
-    io::write_atomically(path, [&](const std::string& tmp) { std::ofstream(tmp) << text; });
-    std::printf("wrote %s\n", path.c_str());
+  if (!a.json.empty()) {
+    const std::string text = doc.dump(1) + "\n";
+    io::write_atomically(a.json, [&](const std::string& tmp) { std::ofstream(tmp) << text; });
+    std::printf("wrote %s\n", a.json.c_str());
   }
   return 0;
 }
 
-int suite_command(const std::vector<std::string>& args, const std::string& command) {
-  using namespace svgf::bench;
-  const Options o(args,
-                  {"out", "sections", "sizes", "chart-size", "iterations-size", "fixtures",
-                   "frames", "warmup", "scene", "distinct-frames", "cache", "baseline-budget-s"},
-                  {"help"});
-  if (o.positional().size() != 1) throw UsageError("suite needs a name: cpu or gpu");
-  SuiteOptions s;
-  s.name = o.positional()[0];
-  s.out_dir = o.get("out", "docs/bench");
-  s.sections = split_commas(o.get("sections", ""));
-  s.sizes = split_commas(o.get("sizes", ""));
-  s.chart_size = o.get("chart-size", s.chart_size);
-  s.iterations_size = o.get("iterations-size", "");
-  s.fixtures_root = o.get("fixtures", default_fixtures());
-  s.cache_dir = o.get("cache", SVGF_BENCH_CACHE_DIR);
-  s.scene = o.get("scene", s.scene);
-  s.distinct_frames = o.get_int("distinct-frames", s.distinct_frames, 1, 1000);
-  s.timing = timing_from(o);
-  s.baseline_budget_s = o.get_float("baseline-budget-s", static_cast<float>(s.baseline_budget_s));
-  s.command = command;
-  return run_suite(s);
+void add_run(CLI::App& bench, const std::string& command, int& status) {
+  auto a = std::make_shared<RunArgs>();
+  a->command = command;
+  CLI::App* run = bench.add_subcommand("run", "one configuration, timed (and measured); the default");
+  run->footer(kRunFooter);
+  run->add_option("--method", a->method,
+                  "a project method, as `svgf denoise`: svgf (default), wavelet, gaussian, jbf, "
+                  "jbf-atrous, bmfr; or an OpenCV baseline: (CPU) cv-gaussian, cv-bilateral, "
+                  "cv-joint-bilateral, cv-nlmeans")
+      ->type_name("M")
+      ->check(svgf::cli::accepted_by(svgf::bench::run_config));
+  run->add_option("--backend", a->backend, "(default cpu)")
+      ->type_name("cpu|cuda")
+      ->check(svgf::cli::accepted_by(svgf::parse_backend));
+  run->add_option("--mode", a->mode, "fast exists on cuda only (default exact)")
+      ->type_name("exact|fast")
+      ->check(svgf::cli::accepted_by(svgf::parse_mode));
+  run->add_option("--threads", a->threads, "CPU threads, 0 = all cores (default 0)")
+      ->type_name("N")->check(CLI::Range(0, 1024));
+  run->add_option("--size", a->size,
+                  "generated frames: 720p, 1080p, 4k, N (square) or WxH (default 720p)")
+      ->type_name("S");
+  run->add_option("--fixture", a->fixture, "a fixture sequence instead of generated frames")
+      ->type_name("DIR");
+  run->add_option("--scene", a->scene, "scene rendered for --size (default cornell-moving)")
+      ->type_name("NAME");
+  run->add_option("--distinct-frames", a->distinct_frames,
+                  "frames rendered for --size, played cyclically (default 8)")
+      ->type_name("K")->check(CLI::Range(1, 1000));
+  run->add_option("--cache", a->cache, "where rendered frames are kept between runs ('' = none)")
+      ->type_name("DIR");
+  add_timing(*run, a->timing);
+  run->add_option("--block", a->block, "CUDA block shape (default 32x8)")->type_name("WxH");
+  run->add_flag("--quality", a->quality,
+                "with --fixture: per-frame PSNR, SSIM, relMSE, FLIP and temporal stability "
+                "against the reference");
+  run->add_option("--json", a->json, "write the results as JSON")->type_name("PATH");
+  run->add_flag("--no-ceilings", a->no_ceilings,
+                "skip measuring the copy bandwidth and float rate (for profilers)");
+  a->params.add_to(*run);
+  run->callback([a, &status] { status = run_command(*a); });
+}
+
+void add_suite(CLI::App& bench, const std::string& command, int& status) {
+  auto s = std::make_shared<svgf::bench::SuiteOptions>();
+  s->command = command;
+  s->out_dir = "docs/bench";
+  s->fixtures_root = default_fixtures();
+  s->cache_dir = SVGF_BENCH_CACHE_DIR;
+  auto lists = std::make_shared<std::pair<std::string, std::string>>();  // sections, sizes
+  CLI::App* suite = bench.add_subcommand("suite", "the suites behind docs/benchmarks.md");
+  suite->footer(kSuiteFooter);
+  suite->add_option("NAME", s->name, "cpu or gpu")->required()->check(CLI::IsMember({"cpu", "gpu"}));
+  suite->add_option("--out", s->out_dir, "(default docs/bench)")->type_name("DIR");
+  suite->add_option("--sections", lists->first, "only these sections")->type_name("A,B");
+  suite->add_option("--sizes", lists->second,
+                    "sizes of the sizes section (default 256,720p,1080p,4k)")
+      ->type_name("A,B");
+  suite->add_option("--chart-size", s->chart_size,
+                    "size of the chart and baseline timings (default 720p)")
+      ->type_name("S");
+  suite->add_option("--iterations-size", s->iterations_size,
+                    "size of the gpu iterations, coverage and blocks sections, of the jbf "
+                    "section's level study and bmfr's camera-pan (default 1080p)")
+      ->type_name("S");
+  suite->add_option("--fixtures", s->fixtures_root,
+                    "fixture folders for the quality section (default fixtures)")
+      ->type_name("DIR");
+  add_timing(*suite, s->timing);
+  suite->add_option("--scene", s->scene, "as for run")->type_name("NAME");
+  suite->add_option("--distinct-frames", s->distinct_frames, "as for run")
+      ->type_name("K")->check(CLI::Range(1, 1000));
+  suite->add_option("--cache", s->cache_dir, "as for run")->type_name("DIR");
+  suite->add_option("--baseline-budget-s", s->baseline_budget_s,
+                    "time budget per baseline, CPU wavelet and CPU jbf timing, which also warm "
+                    "up 2 frames only (default 120)")
+      ->type_name("S")->check(CLI::Range(0.0, 1e9));
+  suite->callback([s, lists, &status] {
+    s->sections = split_commas(lists->first);
+    s->sizes = split_commas(lists->second);
+    status = svgf::bench::run_suite(*s);
+  });
+}
+
+void add_chart_data(CLI::App& bench, int& status) {
+  struct Args {
+    std::string results, out, targets = svgf::bench::default_targets_path();
+  };
+  auto a = std::make_shared<Args>();
+  CLI::App* chart = bench.add_subcommand(
+      "chart-data", "tables for bench/chart.sh and summary.md, with each target's verdict");
+  chart->add_option("RESULTS_DIR", a->results, "the suites' results")->required();
+  chart->add_option("--out", a->out, "(default RESULTS_DIR/data)")->type_name("DIR");
+  chart->add_option("--targets", a->targets,
+                    "the targets (default: the source tree's bench/targets.json)")
+      ->type_name("FILE");
+  chart->callback([a, &status] {
+    status = svgf::bench::write_chart_data(a->results, a->out.empty() ? a->results + "/data" : a->out,
+                                           a->targets);
+  });
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::vector<std::string> args(argv + 1, argv + argc);
+  CLI::App bench("svgf-bench: the benchmark binary (docs/benchmarks.md). Without a subcommand the "
+                 "options are run's: svgf-bench --size 64x64 is svgf-bench run --size 64x64.",
+                 "svgf-bench");
+  svgf::cli::style(bench);
+  bench.require_subcommand(1);
+  int status = 0;
   const std::string command = joined(argc, argv);
-  try {
-    for (const std::string& a : args)
-      if (a == "--help" || a == "-h") {
-        std::fputs(usage().c_str(), stdout);
-        return 0;
-      }
-    if (!args.empty() && args[0] == "suite")
-      return suite_command({args.begin() + 1, args.end()}, command);
-    if (!args.empty() && args[0] == "chart-data") {
-      const Options o({args.begin() + 1, args.end()}, {"out", "targets"}, {});
-      if (o.positional().size() != 1) throw UsageError("chart-data needs RESULTS_DIR");
-      return svgf::bench::write_chart_data(o.positional()[0],
-                                           o.get("out", o.positional()[0] + "/data"),
-                                           o.get("targets", svgf::bench::default_targets_path()));
-    }
-    if (!args.empty() && args[0] == "run") args.erase(args.begin());
-    return run_command(args, command);
-  } catch (const UsageError& e) {
-    std::fprintf(stderr, "svgf-bench: %s\n(svgf-bench --help lists the options)\n",
-                 svgf::io::printable(e.what()).c_str());
-    return 2;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "svgf-bench: %s\n", svgf::io::printable(e.what()).c_str());
-    return 1;
-  }
+  add_run(bench, command, status);
+  add_suite(bench, command, status);
+  add_chart_data(bench, status);
+  // Without a subcommand (`svgf-bench --size 64x64 ...`) the options are run's.
+  std::vector<char*> args(argv, argv + argc);
+  std::string run = "run";
+  if (argc == 1 || (argv[1][0] == '-' && std::string(argv[1]) != "--help" &&
+                    std::string(argv[1]) != "-h"))
+    args.insert(args.begin() + 1, run.data());
+  return svgf::cli::run_main(bench, static_cast<int>(args.size()), args.data(),
+                             [&] { return status; });
 }

@@ -10,6 +10,7 @@ packages=(
   libglm-dev            # camera math in gbuffer/ and io/
   nlohmann-json3-dev    # manifests, reports, benchmark JSON
   libssl-dev            # SHA-256 of frame files (OpenSSL's EVP digests)
+  libcli11-dev          # the tools' command lines: subcommands, validators, help (CLI11 2.1)
   libembree-dev         # fixture path tracer (Embree 3)
   catch2                # tests (Catch2 2.13)
   libopencv-dev libopencv-contrib-dev   # independent checks (imgproc, ximgproc, quality)

@@ -12,7 +12,7 @@
 #include "app/compare_command.h"
 #include "app/denoise_command.h"
 #include "app/html_report.h"
-#include "app/options.h"
+#include "app/usage_error.h"
 #include "app/report_images.h"
 #include "core/tonemap.h"
 #include "io/png.h"

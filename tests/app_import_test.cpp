@@ -14,7 +14,7 @@
 #include "app/import_command.h"
 #include "app/import_derive.h"
 #include "app/import_frame.h"
-#include "app/options.h"
+#include "app/usage_error.h"
 #include "io/exr_frame.h"
 #include "io/games202_matrices.h"
 #include "io/image_file.h"

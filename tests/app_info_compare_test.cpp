@@ -11,7 +11,7 @@
 #include "app/compare_command.h"
 #include "app/denoise_command.h"
 #include "app/info_command.h"
-#include "app/options.h"
+#include "app/usage_error.h"
 #include "io/exr_frame.h"
 #include "io/sequence.h"
 #include "app_test_support.h"

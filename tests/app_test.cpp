@@ -15,7 +15,6 @@
 #include "app/denoise_command.h"
 #include "app/method_options.h"
 #include "app/frame_order.h"
-#include "app/options.h"
 #include "io/exr_frame.h"
 #include "io/sequence.h"
 #include "app_test_support.h"
@@ -225,9 +224,12 @@ TEST_CASE("svgf denoise --method bmfr: its flags reach the filter, bad values na
 TEST_CASE("svgf flags: --svgf-preset picks the paper's or Falcor's values, flags change them",
           "[app]") {
   const auto params = [](std::vector<std::string> args) {
-    const app::Options o(args, app::method_param_flags(), {});
+    CLI::App command_line;
+    app::MethodParamFlags flags;
+    flags.add_to(command_line);
+    cli::parse(command_line, args);
     DenoiserConfig c;
-    app::read_method_params(o, c);
+    flags.read(c);
     return c.svgf;
   };
   const SvgfParams falcor = params({"--svgf-preset", "falcor"});
@@ -249,8 +251,14 @@ TEST_CASE("svgf flags: --svgf-preset picks the paper's or Falcor's values, flags
   REQUIRE_THROWS_WITH(params({"--svgf-preset", "nvidia"}), Catch::Contains("--svgf-preset") &&
                                                                Catch::Contains("nvidia"));
   REQUIRE_THROWS_WITH(params({"--variance-of-mean", "yes"}),
-                      Catch::Contains("--variance-of-mean must be on or off"));
-  REQUIRE_THROWS_WITH(params({"--history-cap", "0"}), Catch::Contains("--history-cap"));
+                      Catch::Contains("--variance-of-mean: must be on or off, got 'yes'"));
+  // A range is a CLI11 validator: the message names the flag and the range.
+  REQUIRE_THROWS_WITH(params({"--history-cap", "0"}),
+                      Catch::Contains("--history-cap: Value 0 not in range 1 to 4096"));
+  REQUIRE_THROWS_WITH(params({"--alpha", "nan"}), Catch::Contains("--alpha: must be a number"));
+  REQUIRE_THROWS_WITH(params({"--phi-color", "x"}), Catch::Contains("--phi-color"));
+  CHECK(params({"--feedback-tap", "-1"}).feedback_tap == -1);  // a negative value, not a flag
+  CHECK(params({"--antilag=on", "--antilag-low", "2"}).antilag_low == 2.f);
 }
 
 // Issue 15, item 2: frames were read in the manifest's order and outputs numbered by position.

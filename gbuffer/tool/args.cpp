@@ -1,6 +1,4 @@
 #include <csignal>
-#include <cstdlib>
-#include <limits>
 
 #include "gbuffer/renderer.h"
 #include "tool/commands.h"
@@ -21,33 +19,23 @@ void install_interrupt_handler() {
 
 std::string default_fixture_dir() { return SVGF_FIXTURES_DIR; }
 
-const std::string& value_of(const Args& args, size_t& i) {
-  if (i + 1 >= args.size()) throw UsageError("option " + args[i] + " needs a value");
-  return args[++i];
+namespace {
+
+int side(const std::string& which, const std::string& value) {
+  int v = 0;
+  if (!CLI::detail::lexical_cast(value, v) || v < 1 || v > kMaxImageSide)
+    throw UsageError("--size: the " + which + " " + value + " is not an integer in 1.." +
+                     std::to_string(kMaxImageSide));
+  return v;
 }
 
-int parse_int(const std::string& option, const std::string& value, int lo, int hi) {
-  char* end = nullptr;
-  const long v = std::strtol(value.c_str(), &end, 10);
-  if (value.empty() || *end != '\0' || v < lo || v > hi)
-    throw UsageError(option + " " + value + ": expected an integer in " + std::to_string(lo) +
-                     ".." + std::to_string(hi));
-  return static_cast<int>(v);
-}
-
-uint64_t parse_u64(const std::string& option, const std::string& value) {
-  char* end = nullptr;
-  const unsigned long long v = std::strtoull(value.c_str(), &end, 10);
-  if (value.empty() || value[0] == '-' || *end != '\0')
-    throw UsageError(option + " " + value + ": expected a non-negative integer");
-  return static_cast<uint64_t>(v);
-}
+}  // namespace
 
 void parse_size(const std::string& value, int& width, int& height) {
   const size_t x = value.find('x');
   if (x == std::string::npos) throw UsageError("--size " + value + ": expected WxH, e.g. 128x128");
-  width = parse_int("--size width", value.substr(0, x), 1, kMaxImageSide);
-  height = parse_int("--size height", value.substr(x + 1), 1, kMaxImageSide);
+  width = side("width", value.substr(0, x));
+  height = side("height", value.substr(x + 1));
 }
 
 }  // namespace svgf::gbuffer::tool

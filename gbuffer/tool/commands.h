@@ -1,31 +1,24 @@
 #pragma once
-// The subcommands of svgf-fixtures. Each returns the process exit status; bad input throws
-// UsageError (exit 2), other failures std::exception (exit 1).
-#include <stdexcept>
+// The subcommands of svgf-fixtures. Each adds itself to the tool's command line and sets
+// `status` to the exit status when it has run; bad input throws UsageError (exit 2), other
+// failures std::exception (exit 1).
 #include <string>
-#include <vector>
+
+#include "cli/command_line.h"
 
 namespace svgf::gbuffer::tool {
 
-struct UsageError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
+using cli::UsageError;
 
-using Args = std::vector<std::string>;
-
-int run_generate(const Args& args);
-int run_verify(const Args& args);
-int run_list(const Args& args);
+void add_generate(CLI::App& tool, int& status);
+void add_verify(CLI::App& tool, int& status);
+void add_list(CLI::App& tool, int& status);
 
 // Default fixture folder: <source tree>/fixtures (SVGF_FIXTURES_DIR at build time).
 std::string default_fixture_dir();
 
-// Argument helpers.
-int parse_int(const std::string& option, const std::string& value, int lo, int hi);
-uint64_t parse_u64(const std::string& option, const std::string& value);
+// "WxH" (each side in 1..kMaxImageSide); UsageError naming --size.
 void parse_size(const std::string& value, int& width, int& height);
-// The value after args[i] (advancing i); UsageError when there is none.
-const std::string& value_of(const Args& args, size_t& i);
 
 // Set by SIGINT/SIGTERM: the renderer stops at the next row and nothing is committed.
 bool interrupted();

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <string>
+#include <vector>
 #include <optional>
 
 #include "gbuffer/fixture_format.h"
@@ -71,33 +73,33 @@ void generate_one(const Renderer& renderer, const Job& job, const fs::path& out)
   std::fflush(stdout);
 }
 
-}  // namespace
-
-int run_generate(const Args& args) {
+struct GenerateArgs {
   std::vector<std::string> names;
   bool all = false, split = false;
-  std::optional<int> width, height, frames, spp, reference_spp;
+  std::string size;
+  std::optional<int> frames, spp, reference_spp;
   uint64_t seed = 1;
   int threads = 0;
   std::string out = default_fixture_dir();
-  for (size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    if (a == "--scene") names.push_back(value_of(args, i));
-    else if (a == "--all") all = true;
-    else if (a == "--size") {
-      int w = 0, h = 0;
-      parse_size(value_of(args, i), w, h);
-      width = w;
-      height = h;
-    } else if (a == "--frames") frames = parse_int(a, value_of(args, i), 1, 100000);
-    else if (a == "--spp") spp = parse_int(a, value_of(args, i), 1, kMaxSpp);
-    else if (a == "--reference-spp") reference_spp = parse_int(a, value_of(args, i), 0, kMaxSpp);
-    else if (a == "--seed") seed = parse_u64(a, value_of(args, i));
-    else if (a == "--out") out = value_of(args, i);
-    else if (a == "--split") split = true;
-    else if (a == "--threads") threads = parse_int(a, value_of(args, i), 1, 1024);
-    else throw UsageError("generate: unknown option '" + a + "'");
+};
+
+int run_generate(const GenerateArgs& a) {
+  const std::vector<std::string>& names = a.names;
+  const bool all = a.all;
+  std::optional<int> width, height;
+  if (!a.size.empty()) {
+    int w = 0, h = 0;
+    parse_size(a.size, w, h);
+    width = w;
+    height = h;
   }
+  const std::optional<int>& frames = a.frames;
+  const std::optional<int>& spp = a.spp;
+  const std::optional<int>& reference_spp = a.reference_spp;
+  const uint64_t seed = a.seed;
+  const bool split = a.split;
+  const int threads = a.threads;
+  const std::string& out = a.out;
   if (all == !names.empty()) throw UsageError("generate: give either --scene NAME or --all");
 
   std::vector<Job> jobs;
@@ -133,6 +135,39 @@ int run_generate(const Args& args) {
   const Renderer renderer;
   for (const Job& j : jobs) generate_one(renderer, j, out);
   return 0;
+}
+
+}  // namespace
+
+void add_generate(CLI::App& tool, int& status) {
+  auto a = std::make_shared<GenerateArgs>();
+  CLI::App* sub = tool.add_subcommand("generate", "render scenes into sequence folders");
+  sub->footer("Writes DIR/<scene>/ atomically; the scene defaults (list) reproduce the committed\n"
+              "fixtures; --split adds the direct and indirect channels.");
+  sub->add_option("--scene", a->names, "a scene to render (repeatable; list names them)")
+      ->type_name("NAME");
+  sub->add_flag("--all", a->all, "every scene");
+  sub->add_option("--size", a->size, "image size (default: the scene's)")->type_name("WxH");
+  sub->add_option("--frames", a->frames, "frames (default: the scene's)")
+      ->type_name("N")->check(CLI::Range(1, 100000));
+  sub->add_option("--spp", a->spp, "samples per pixel (default: the scene's)")
+      ->type_name("N")->check(CLI::Range(1, kMaxSpp));
+  sub->add_option("--reference-spp", a->reference_spp,
+                  "samples per pixel of the reference, 0 = none (default: the scene's)")
+      ->type_name("N")->check(CLI::Range(0, kMaxSpp));
+  sub->add_option("--seed", a->seed, "random seed (default 1)")
+      ->type_name("S")
+      ->check(CLI::Validator(
+          [](std::string& s) {
+            return !s.empty() && s[0] != '-' ? "" : "must be an integer >= 0, got '" + s + "'";
+          },
+          ""));
+  sub->add_option("--out", a->out, "output folder (default " + default_fixture_dir() + ")")
+      ->type_name("DIR");
+  sub->add_flag("--split", a->split, "also the direct and indirect channels");
+  sub->add_option("--threads", a->threads, "render threads (default: all cores)")
+      ->type_name("N")->check(CLI::Range(1, 1024));
+  sub->callback([a, &status] { status = run_generate(*a); });
 }
 
 }  // namespace svgf::gbuffer::tool

@@ -6,8 +6,9 @@
 
 namespace svgf::gbuffer::tool {
 
-int run_list(const Args& args) {
-  if (!args.empty()) throw UsageError("list takes no arguments");
+namespace {
+
+int run_list() {
   std::printf("%-15s %-9s %6s %4s %7s %5s  %s\n", "scene", "size", "frames", "spp", "ref-spp",
               "cuts", "what it tests");
   for (const SceneDesc& s : scene_library()) {
@@ -19,6 +20,14 @@ int run_list(const Args& args) {
   }
   std::printf("default output folder: %s/<scene>\n", default_fixture_dir().c_str());
   return 0;
+}
+
+}  // namespace
+
+void add_list(CLI::App& tool, int& status) {
+  tool.add_subcommand("list", "the built-in scenes and their defaults")->callback([&status] {
+    status = run_list();
+  });
 }
 
 }  // namespace svgf::gbuffer::tool

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <memory>
 
 #include "gbuffer/fixture_format.h"
@@ -97,26 +98,16 @@ int verify_one(const Renderer& renderer, const fs::path& dir, const VerifyOption
   return problems;
 }
 
-}  // namespace
-
-int run_verify(const Args& args) {
+struct VerifyArgs {
   VerifyOptions opt;
   std::vector<std::string> dirs;
   int threads = 0;
-  for (size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    if (a == "--frames") opt.frames = parse_int(a, value_of(args, i), 1, 100000);
-    else if (a == "--skip-reference") opt.skip_reference = true;
-    else if (a == "--tolerance") {
-      const std::string& v = value_of(args, i);
-      char* end = nullptr;
-      opt.tolerance = std::strtof(v.c_str(), &end);
-      if (v.empty() || *end != '\0' || !(opt.tolerance >= 0.f))
-        throw UsageError("--tolerance " + v + ": expected a number >= 0");
-    } else if (a == "--threads") threads = parse_int(a, value_of(args, i), 1, 1024);
-    else if (!a.empty() && a[0] == '-') throw UsageError("verify: unknown option '" + a + "'");
-    else dirs.push_back(a);
-  }
+};
+
+int run_verify(const VerifyArgs& a) {
+  const VerifyOptions& opt = a.opt;
+  std::vector<std::string> dirs = a.dirs;
+  const int threads = a.threads;
   if (dirs.empty()) dirs.push_back(default_fixture_dir());
   std::vector<fs::path> seqs;
   for (const std::string& d : dirs)
@@ -136,6 +127,26 @@ int run_verify(const Args& args) {
   std::printf("verify: %zu sequence%s, %d failed, %d problem%s\n", seqs.size(),
               seqs.size() == 1 ? "" : "s", failed, problems, problems == 1 ? "" : "s");
   return problems ? 1 : 0;
+}
+
+}  // namespace
+
+void add_verify(CLI::App& tool, int& status) {
+  auto a = std::make_shared<VerifyArgs>();
+  CLI::App* sub = tool.add_subcommand("verify", "re-render sequences and compare them with the files");
+  sub->footer("Re-renders sequence folders (or folders of them; default " + default_fixture_dir() +
+              ") and compares them with the files value by value.");
+  sub->add_option("DIR", a->dirs, "sequence folders or folders of them");
+  sub->add_option("--frames", a->opt.frames, "only the first K frames (default all)")
+      ->type_name("K")->check(CLI::Range(1, 100000));
+  sub->add_flag("--skip-reference", a->opt.skip_reference, "do not re-render the reference");
+  sub->add_option("--tolerance", a->opt.tolerance, "largest difference allowed (default 0)")
+      ->type_name("T")
+      ->check(svgf::cli::NotNaN)
+      ->check(CLI::Range(0.f, std::numeric_limits<float>::max()));
+  sub->add_option("--threads", a->threads, "render threads (default: all cores)")
+      ->type_name("N")->check(CLI::Range(1, 1024));
+  sub->callback([a, &status] { status = run_verify(*a); });
 }
 
 }  // namespace svgf::gbuffer::tool
