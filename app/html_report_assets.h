@@ -120,11 +120,13 @@ inline constexpr const char* kScript = R"(
     return [r.left + window.scrollX, r.top + window.scrollY, r.width, r.height]
         .map(Math.round).join(',');
   }
+  // After the window's load event every image has loaded (or failed): the marks are set in
+  // that event's handler, so a tool that reads the page once it has loaded (a headless
+  // browser's --dump-dom) finds them whatever the machine's load (img.decode()'s promises
+  // settled after the dump on a busy 2-core machine).
   const images = Array.from(document.querySelectorAll('.frame img'));
-  Promise.all(images.map(function (img) {
-    return img.decode().then(function () { return img.naturalWidth > 0; },
-                             function () { return false; });
-  })).then(function (decoded) {
+  function mark() {
+    const decoded = images.map(function (img) { return img.complete && img.naturalWidth > 0; });
     const ok = decoded.filter(Boolean).length;
     images.forEach(function (img) {
       if (!img.closest('.frame').hidden) img.dataset.rect = rect(img);
@@ -138,7 +140,9 @@ inline constexpr const char* kScript = R"(
     document.body.dataset.imagesDecoded = ok;
     document.body.dataset.imagesFailed = decoded.length - ok;
     document.body.dataset.ready = '1';
-  });
+  }
+  if (document.readyState === 'complete') mark();
+  else window.addEventListener('load', mark);
 })();
 )";
 

@@ -124,10 +124,16 @@ void antilag_shortens_contradicted_history(const TestDevice& d) {
     return rig;
   };
   // An outlier (50x): |50 - 1| / (0.1 * 50) = 9.8 >= 6, all dropped: the pixel restarts.
+  // And one so large (1e8) that blending it out would lose the new sample in rounding
+  // (1e8 + (1 - 1e8) = 0 in float): a restart keeps nothing of it.
+  for (float planted : {50.f, 1e8f}) {
+    const ReprojectRig outlier = run(true, planted);
+    INFO("planted " << planted);
+    REQUIRE(outlier.history.at(4, 4, 0) == 1.f);
+    for (int c = 0; c < 3; ++c) REQUIRE(outlier.accumulated.at(4, 4, c) == 1.f);
+    REQUIRE(outlier.moments.at(4, 4, 0) == luminance(make_vec3(1.f, 1.f, 1.f)));
+  }
   const ReprojectRig outlier = run(true, 50.f);
-  REQUIRE(outlier.history.at(4, 4, 0) == 1.f);
-  for (int c = 0; c < 3; ++c) REQUIRE(outlier.accumulated.at(4, 4, c) == 1.f);
-  REQUIRE(outlier.moments.at(4, 4, 0) == luminance(make_vec3(1.f, 1.f, 1.f)));
   // Its neighbours agree with the frame (the outlier is in the history, not in this frame's
   // samples): they keep their history.
   REQUIRE(outlier.history.at(3, 4, 0) == 5.f);

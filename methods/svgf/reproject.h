@@ -162,7 +162,7 @@ struct ReprojectKernel {
     if (h.valid) {
       const float drop = antilag_drop(x, y, i, l, h);
       h.length = h.length * (1.f - drop);
-      if (!(h.length > 0.f)) h.valid = false;
+      if (!(h.length > 0.f)) h = History();  // nothing of it, not even in rounding
     }
     const float length =
         h.valid ? min_f(h.length + 1.f, static_cast<float>(params.history_cap)) : 1.f;
