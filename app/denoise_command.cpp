@@ -80,21 +80,6 @@ void write_preview(const std::string& path, const Frame& in, const Image& out, f
   io::write_png_rgb8(path, strip.data(), w * panels, h);
 }
 
-// OUT_DIR as the staging folder's sibling needs it, checked for replacement up front: the run
-// replaces it as a whole, so it must be absent, empty or an earlier run's output (it holds
-// report.json); a wrong path such as a home folder is refused before anything is read.
-std::string output_folder(const std::string& out_arg) {
-  std::string out_dir;
-  try {
-    out_dir = io::normalized_folder(out_arg);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError("OUT_DIR: " + std::string(e.what()));
-  }
-  if (const std::string why = io::why_not_replaceable(out_dir, kReportJson); !why.empty())
-    throw UsageError(why + " (OUT_DIR is replaced as a whole by each run)");
-  return out_dir;
-}
-
 // Everything that can be checked before the output exists, so that bad input never leaves a
 // half-written output: every frame's header (size against the manifest, channels; no pixels
 // read), the numbering (all frames: the order needs every number), then the SHA-256 of each
@@ -206,7 +191,7 @@ int run_denoise(const DenoiseArgs& a) {
   RunSettings settings;
   settings.in_dir = a.in_dir;
   check_folders_apart(settings.in_dir, a.out_dir);
-  settings.out_dir = output_folder(a.out_dir);
+  settings.out_dir = output_folder(a.out_dir, kReportJson);
   // Every argument is checked before anything is read or written: a bad value or an impossible
   // combination (fast mode on the CPU) is a usage error, exit 2.
   DenoiserConfig config;

@@ -1,6 +1,7 @@
 #include "app/folder_checks.h"
 
 #include <filesystem>
+#include <stdexcept>
 
 #include "app/usage_error.h"
 #include "io/staged_folder.h"
@@ -45,6 +46,18 @@ void check_folders_apart(const std::string& in_dir, const std::string& out_dir) 
       throw UsageError("IN_DIR '" + in_dir + "' is in " + p.filename().string() +
                        ", a leftover of a run into OUT_DIR '" + out_dir +
                        "' that the next run would clear");
+}
+
+std::string output_folder(const std::string& out_arg, const std::string& marker) {
+  std::string out_dir;
+  try {
+    out_dir = io::normalized_folder(out_arg);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError("OUT_DIR: " + std::string(e.what()));
+  }
+  if (const std::string why = io::why_not_replaceable(out_dir, marker); !why.empty())
+    throw UsageError(why + " (OUT_DIR is replaced as a whole)");
+  return out_dir;
 }
 
 }  // namespace svgf::app

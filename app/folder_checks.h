@@ -9,4 +9,9 @@ namespace svgf::app {
 // would clear: the output would overwrite or mix with the input.
 void check_folders_apart(const std::string& in_dir, const std::string& out_dir);
 
+// OUT_DIR normalized and checked for replacement up front: a command replaces it as a whole,
+// so it must be absent, empty or an earlier output of that command (one holding `marker`); a
+// wrong path such as a home folder is refused before anything is read. UsageError otherwise.
+std::string output_folder(const std::string& out_arg, const std::string& marker);
+
 }  // namespace svgf::app

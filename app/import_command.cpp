@@ -132,18 +132,6 @@ std::vector<int> discover_frames(const std::string& in_dir, const std::string& c
   return frames;
 }
 
-std::string output_folder(const std::string& out_arg) {
-  std::string out_dir;
-  try {
-    out_dir = io::normalized_folder(out_arg);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError("OUT_DIR: " + std::string(e.what()));
-  }
-  if (const std::string why = io::why_not_replaceable(out_dir, "manifest.json"); !why.empty())
-    throw UsageError(why + " (OUT_DIR is replaced as a whole)");
-  return out_dir;
-}
-
 struct Run {
   ImportSpec spec;
   std::vector<int> frames;
@@ -188,7 +176,7 @@ int run_import(const ImportArgs& o) {
   std::string frames_spec;
   run.spec.patterns = patterns_from(o, frames_spec);
   check_folders_apart(run.spec.in_dir, o.out_dir);
-  run.out_dir = output_folder(o.out_dir);
+  run.out_dir = output_folder(o.out_dir, "manifest.json");
   run.spp = o.spp;
   run.reference_spp = o.reference_spp_option->count() ? o.reference_spp
                                                        : run.spec.patterns.count("reference") ? 1 : 0;
