@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/command_line.h"
 #include "app/report_images.h"
 #include "app/report_pages.h"
 #include "io/atomic_file.h"

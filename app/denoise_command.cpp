@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "cli/command_line.h"
 #include "app/folder_checks.h"
 #include "app/frame_order.h"
 #include "app/interrupt.h"

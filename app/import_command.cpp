@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/command_line.h"
 #include "app/folder_checks.h"
 #include "app/import_frame.h"
 #include "app/interrupt.h"

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/command_line.h"
 #include "app/input_warnings.h"
 #include "io/atomic_file.h"
 #include "io/printable.h"

@@ -1,4 +1,5 @@
 #include "app/method_options.h"
+#include "cli/command_line.h"
 
 #include <stdexcept>
 #include <type_traits>
@@ -68,6 +69,10 @@ void MethodParamFlags::add_to(CLI::App& app) {
   flag("variance-of-mean", "on|off", svgf,
        "filter with the accumulated mean's variance (default off)",
        [](DenoiserConfig& c, bool v) { c.svgf.variance_of_mean = v; })->check(on_off);
+  flag("svgf-taa", "on|off", svgf, "temporal anti-aliasing after remodulation (default off)",
+       [](DenoiserConfig& c, bool v) { c.svgf.taa = v; })->check(on_off);
+  flag("svgf-taa-alpha", "A", svgf, "its blend toward the new frame (default 0.1)",
+       [](DenoiserConfig& c, float v) { c.svgf.taa_alpha = v; })->check(cli::NotNaN);
   flag("antilag", "on|off", svgf, "shorten a history its neighbourhood contradicts (default off)",
        [](DenoiserConfig& c, bool v) { c.svgf.antilag = v; })->check(on_off);
   flag("antilag-radius", "R", svgf, "... the (2R+1)^2 neighbourhood (default 2)",

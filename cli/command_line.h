@@ -7,13 +7,9 @@
 #include <string>
 #include <vector>
 
-namespace svgf::cli {
+#include "cli/usage_error.h"
 
-// A bad or missing argument, or an impossible combination: the tool exits with 2.
-class UsageError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+namespace svgf::cli {
 
 // An App with the project's help layout. `name` is what the user types ("svgf denoise").
 void style(CLI::App& app);

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/denoise_command.h"
+#include "cli/command_line.h"
 #include "app/method_options.h"
 #include "app/frame_order.h"
 #include "io/exr_frame.h"
@@ -259,6 +260,28 @@ TEST_CASE("svgf flags: --svgf-preset picks the paper's or Falcor's values, flags
   REQUIRE_THROWS_WITH(params({"--phi-color", "x"}), Catch::Contains("--phi-color"));
   CHECK(params({"--feedback-tap", "-1"}).feedback_tap == -1);  // a negative value, not a flag
   CHECK(params({"--antilag=on", "--antilag-low", "2"}).antilag_low == 2.f);
+  const SvgfParams taa = params({"--svgf-taa", "on", "--svgf-taa-alpha", "0.25"});
+  CHECK(taa.taa);
+  CHECK(taa.taa_alpha == 0.25f);
+  CHECK_FALSE(params({}).taa);
+  REQUIRE_THROWS_WITH(params({"--svgf-taa", "yes"}), Catch::Contains("--svgf-taa"));
+}
+
+TEST_CASE("svgf denoise --svgf-taa: TAA is timed as its own stage, a bad alpha names the flag",
+          "[app]") {
+  const fs::path in = write_synthetic(scratch("svgf_taa_in"), 3), out = scratch("svgf_taa_out");
+  REQUIRE(app::denoise_command({in.string(), out.string(), "--backend", "cpu", "--svgf-taa", "on",
+                                "--no-preview"}) == 0);
+  std::ifstream f(out / "report.json");
+  const auto report = nlohmann::json::parse(f);
+  REQUIRE(report["frames"][1]["stage_ms"].contains("taa"));
+  REQUIRE(report["mean_psnr_denoised_db"].get<double>() >
+          report["mean_psnr_noisy_db"].get<double>() + 5);
+  REQUIRE_THROWS_WITH(app::denoise_command({in.string(), out.string(), "--backend", "cpu",
+                                            "--svgf-taa-alpha", "0"}),
+                      Catch::Contains("--svgf-taa-alpha"));
+  fs::remove_all(in);
+  test::remove_output(out);
 }
 
 // Issue 15, item 2: frames were read in the manifest's order and outputs numbered by position.

@@ -1,4 +1,6 @@
+#include <cerrno>
 #include <csignal>
+#include <cstdlib>
 
 #include "gbuffer/renderer.h"
 #include "tool/commands.h"
@@ -22,11 +24,14 @@ std::string default_fixture_dir() { return SVGF_FIXTURES_DIR; }
 namespace {
 
 int side(const std::string& which, const std::string& value) {
-  int v = 0;
-  if (!CLI::detail::lexical_cast(value, v) || v < 1 || v > kMaxImageSide)
+  // Digits only (no sign, space or trailing text), then a range check.
+  const bool digits = !value.empty() && value.size() <= 9 &&
+                      value.find_first_not_of("0123456789") == std::string::npos;
+  const long v = digits ? std::strtol(value.c_str(), nullptr, 10) : 0;
+  if (v < 1 || v > kMaxImageSide)
     throw UsageError("--size: the " + which + " " + value + " is not an integer in 1.." +
                      std::to_string(kMaxImageSide));
-  return v;
+  return static_cast<int>(v);
 }
 
 }  // namespace

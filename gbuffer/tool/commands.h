@@ -4,7 +4,7 @@
 // failures std::exception (exit 1).
 #include <string>
 
-#include "cli/command_line.h"
+#include "cli/usage_error.h"
 
 namespace svgf::gbuffer::tool {
 

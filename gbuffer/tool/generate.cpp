@@ -12,6 +12,7 @@
 #include "gbuffer/renderer.h"
 #include "gbuffer/scenes.h"
 #include "io/sequence.h"
+#include "cli/command_line.h"
 #include "tool/commands.h"
 #include "tool/progress.h"
 

@@ -2,6 +2,7 @@
 #include <cstdio>
 
 #include "gbuffer/scenes.h"
+#include "cli/command_line.h"
 #include "tool/commands.h"
 
 namespace svgf::gbuffer::tool {

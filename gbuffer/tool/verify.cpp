@@ -13,6 +13,7 @@
 #include "gbuffer/scenes.h"
 #include "io/sequence.h"
 #include "io/sha256.h"
+#include "cli/command_line.h"
 #include "tool/commands.h"
 #include "tool/progress.h"
 
