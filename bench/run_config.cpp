@@ -31,6 +31,7 @@ std::string params_key(const DenoiserConfig& d) {
       unless_default("cap", static_cast<float>(p.history_cap), static_cast<float>(def.history_cap));
       if (p.variance_of_mean != def.variance_of_mean) s << (p.variance_of_mean ? " vom" : " novom");
       if (p.antilag) s << " antilag" << p.antilag_low << '-' << p.antilag_high << '/' << p.antilag_relative;
+      if (p.taa) s << " taa" << p.taa_alpha;
       break;
     }
     case Method::Wavelet: {
@@ -88,7 +89,8 @@ json params_json(const DenoiserConfig& d) {
               {"phi_depth", p.phi_depth},   {"history_cap", p.history_cap},
               {"variance_of_mean", p.variance_of_mean}, {"antilag", p.antilag},
               {"antilag_low", p.antilag_low}, {"antilag_high", p.antilag_high},
-              {"antilag_relative", p.antilag_relative}};
+              {"antilag_relative", p.antilag_relative}, {"taa", p.taa},
+              {"taa_alpha", p.taa_alpha}};
     }
     case Method::Wavelet: {
       const WaveletParams& p = d.wavelet;
@@ -185,6 +187,9 @@ std::vector<RunConfig> svgf_preset_configs(Backend backend, Mode mode, int threa
   RunConfig antilag = v.back();
   antilag.denoiser.svgf.antilag = true;
   v.push_back(antilag);
+  RunConfig taa = project_config("svgf", backend, mode, threads);  // the defaults + TAA
+  taa.denoiser.svgf.taa = true;
+  v.push_back(taa);
   return v;
 }
 

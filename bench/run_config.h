@@ -31,7 +31,7 @@ struct RunConfig {
 RunConfig run_config(const std::string& method);
 RunConfig svgf_config(Backend backend, Mode mode, int iterations, int feedback_tap, int threads);
 // SVGF's named configurations beside the defaults (methods/svgf/params.h: svgf_preset): the
-// paper's, converge, and converge with the anti-lag.
+// paper's, converge, converge with the anti-lag, and the defaults with TAA.
 std::vector<RunConfig> svgf_preset_configs(Backend backend, Mode mode, int threads);
 // The CIS 565 wavelet filter at its defaults but for the kernel size (3, 5, 7, 9).
 RunConfig wavelet_config(Backend backend, Mode mode, int kernel_size, int threads);

@@ -255,8 +255,54 @@ void phi_depth_zero_is_no_depth_term(const TestDevice& device) {
   REQUIRE(differing > 0);
 }
 
+// --svgf-taa: the frame's output is core/taa.h applied to the output without TAA and the
+// previous TAA output, recomputed here on the CPU. The first frame and the first after a reset
+// pass through; the SVGF histories are TAA's input, untouched by it.
+void taa_follows_remodulation(const TestDevice& device) {
+  test::SyntheticScene scene;
+  DenoiserConfig with = config_for(device);
+  with.svgf.taa = true;
+  auto plain = make_denoiser(config_for(device));
+  auto taa = make_denoiser(with);
+  REQUIRE(taa->stages().back() == svgf_stage::kTaa);
+  REQUIRE(plain->stages().back() == svgf_stage::kRemodulate);
+  REQUIRE_THROWS(plain->read_buffer(svgf_buffer::kTaaHistory));  // no TAA, no such buffer
+  Image previous;
+  for (int k = 0; k < 6; ++k) {
+    if (k == 4) {
+      plain->reset();
+      taa->reset();
+    }
+    const Frame f = scene.frame(k);
+    Image a, b;
+    plain->denoise(f, a);
+    taa->denoise(f, b);
+    INFO("frame " << k);
+    for (float v : b.data()) REQUIRE(std::isfinite(v));
+    test::require_identical(plain->read_buffer(svgf_buffer::kColorHistory),
+                            taa->read_buffer(svgf_buffer::kColorHistory), "color history");
+    test::require_identical(taa->read_buffer(svgf_buffer::kTaaHistory), b, "TAA history");
+    Image expected(f.width(), f.height(), 3), history_out(f.width(), f.height(), 3);
+    TemporalAntiAliasing k_taa;
+    k_taa.guides = f.guides();
+    k_taa.current = a.rgb();
+    k_taa.history = previous.empty() ? a.rgb() : previous.rgb();
+    k_taa.history_out = history_out.rgb();
+    k_taa.output = expected.rgb();
+    k_taa.has_history = k != 0 && k != 4;
+    k_taa.alpha = with.svgf.taa_alpha;
+    cpu::for_each_pixel(f.width(), f.height(), k_taa);
+    require_matches(device, b, expected, "TAA output vs core/taa.h on the output without TAA");
+    if (k == 0 || k == 4) test::require_identical(a, b, "a history's first frame passes through");
+    else REQUIRE(test::max_relative_difference(a, b, 1e-3) > 1e-4);
+    previous = b;
+  }
+}
+
 }  // namespace
 
+SVGF_DEVICE_TEST("pipeline: --svgf-taa blends the output with its reprojected, clamped history",
+                 "[pipeline]", taa_follows_remodulation)
 SVGF_DEVICE_TEST("pipeline: denoising a moving synthetic sequence beats the noisy input",
                  "[pipeline]", beats_noisy_input)
 SVGF_DEVICE_TEST("pipeline: the feedback tap is what the next frame reads", "[pipeline]",

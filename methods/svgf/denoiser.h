@@ -22,7 +22,8 @@ class SvgfDenoiser final : public Denoiser {
   SvgfDenoiser(const SvgfParams& params, const EngineConfig& config)
       : params_(params), mode_(config.mode), backend_(config) {
     params_.validate();
-    backend_.set_method_planes(2 * (3 + 2 + 1 + 4) + 3 + 4 + (mode_ == Mode::Fast ? 4 : 0));
+    backend_.set_method_planes(2 * (3 + 2 + 1 + 4) + 3 + 4 + (mode_ == Mode::Fast ? 4 : 0) +
+                               (params_.taa ? 3 * 3 : 0));
   }
 
   void denoise(const Frame& in, Image& out) override {
@@ -53,6 +54,11 @@ class SvgfDenoiser final : public Denoiser {
     b.signal[0] = backend_.plane(signal_[0], 0);
     b.signal[1] = backend_.plane(signal_[1], 0);
     b.output = backend_.output(out);
+    if (params_.taa) {
+      b.remodulated = backend_.rgb(remodulated_);
+      b.prev_taa = backend_.rgb(taa_history_[prev]);
+      b.next_taa = backend_.rgb(taa_history_[next]);
+    }
 #if defined(__CUDACC__)
     if (mode_ == Mode::Fast) {
       b.packed_guides = backend_.plane(packed_guides_, 0);
@@ -70,8 +76,10 @@ class SvgfDenoiser final : public Denoiser {
   void reset() override { has_history_ = false; }
   const FrameReport& last_report() const override { return report_; }
   std::string description() const override { return "svgf " + backend_.description(); }
-  std::vector<std::string> stages() const override { return svgf_stage::all(); }
-  std::vector<std::string> debug_buffers() const override { return svgf_buffer::all(); }
+  std::vector<std::string> stages() const override { return svgf_stage::all(params_.taa); }
+  std::vector<std::string> debug_buffers() const override {
+    return svgf_buffer::all(params_.taa);
+  }
 
   Image read_buffer(std::string_view name) const override {
     namespace buf = svgf_buffer;
@@ -81,6 +89,7 @@ class SvgfDenoiser final : public Denoiser {
       if (name == buf::kMoments) return &moments_[slot_];
       if (name == buf::kHistoryLength) return &history_[slot_];
       if (name == buf::kColorHistory) return &color_history_[slot_];
+      if (name == buf::kTaaHistory && params_.taa) return &taa_history_[slot_];
       return nullptr;
     };
     const typename Backend::Buffer* which = pick();
@@ -101,6 +110,10 @@ class SvgfDenoiser final : public Denoiser {
       backend_.allocate(illumination_, 3, "illumination");
       backend_.allocate(accumulated_, 4, "accumulation");
       if (mode_ == Mode::Fast) backend_.allocate(packed_guides_, 4, "packed guides");
+      if (params_.taa) {
+        backend_.allocate(remodulated_, 3, "remodulated color");
+        for (auto& t : taa_history_) backend_.allocate(t, 3, "TAA history");
+      }
     } catch (...) {
       release();  // nothing half-made stays; a later frame may try again
       throw;
@@ -114,7 +127,9 @@ class SvgfDenoiser final : public Denoiser {
       moments_[s] = {};
       history_[s] = {};
       signal_[s] = {};
+      taa_history_[s] = {};
     }
+    remodulated_ = {};
     illumination_ = {};
     accumulated_ = {};
     packed_guides_ = {};
@@ -128,6 +143,7 @@ class SvgfDenoiser final : public Denoiser {
   bool has_history_ = false;
   typename Backend::Buffer color_history_[2], moments_[2], history_[2];
   typename Backend::Buffer illumination_, accumulated_, signal_[2], packed_guides_;
+  typename Backend::Buffer remodulated_, taa_history_[2];  // only with TAA
   FrameReport report_;
 };
 

@@ -37,6 +37,13 @@ struct SvgfParams {
   float antilag_relative = 0.05f;
   float antilag_floor = 1e-3f;
 
+  // Temporal anti-aliasing after remodulation (core/taa.h; issue 12's seed, the jacquespillet
+  // CUDA SVGF, blends 0.1): the output is blended with the previous TAA output, reprojected and
+  // clamped to this frame's YCoCg neighbourhood. Off by default, as in Falcor's SVGFPass (TAA is
+  // its own pass there).
+  bool taa = false;
+  float taa_alpha = 0.1f;
+
   // Reprojection tap tests. A tap is kept when its mesh id matches, its world normals agree to
   // within reproject_normal_cos, and |z - z_prev| <= scale * fwidth(z) + relative * z.
   float reproject_depth_gradient_scale = 10.f;
@@ -87,6 +94,7 @@ struct SvgfParams {
       fail("--feedback-tap must be in [-1, 11], got " + std::to_string(feedback_tap));
     in_unit(alpha, "--alpha");
     in_unit(moments_alpha, "--moments-alpha");
+    in_unit(taa_alpha, "--svgf-taa-alpha");
     if (!(std::isfinite(phi_color) && phi_color > 0.f))
       fail("--phi-color must be finite and > 0, got " + std::to_string(phi_color));
     at_least(phi_normal, 0.f, "--phi-normal");

@@ -9,6 +9,7 @@
 
 #include "core/copy.h"
 #include "core/fuse.h"
+#include "core/taa.h"
 #include "core/views.h"
 #include "methods/svgf/atrous.h"
 #include "methods/svgf/demodulate.h"
@@ -48,6 +49,11 @@ struct SvgfFrameBuffers {
   float* packed_guides = nullptr;  // fast mode: 4 floats a pixel (depth, normal)
   // Output: the denoised, remodulated color.
   RgbView output;
+  // With TAA (p.taa): remodulation writes `remodulated`; TAA blends it with the previous TAA
+  // output `prev_taa` and writes `next_taa` (the next frame's) and `output`.
+  RgbView remodulated;
+  ConstRgbView prev_taa;
+  RgbView next_taa;
 
   size_t pixels() const { return static_cast<size_t>(guides.width) * guides.height; }
   IllumVarView filtered(int k) const {
@@ -119,7 +125,8 @@ void run_svgf_frame(Engine& engine, const SvgfFrameBuffers& b, const SvgfParams&
   const auto signal = [&](int k) { return signal_buffer(flavor, b, k); };
   using Signal = std::decay_t<decltype(signal(0))>;
   using ConstSignal = typename Flavor::ConstSignal;
-  const RemodulateSink remodulate{b.albedo, b.emission, b.output, p.albedo_epsilon};
+  const RemodulateSink remodulate{b.albedo, b.emission, p.taa ? b.remodulated : b.output,
+                                  p.albedo_epsilon};
 
   // 1. (color - emission) / albedo -> illumination (the inputs are sanitized already).
   // 2. illumination + history -> accumulated color, moments and history length.
@@ -183,6 +190,20 @@ void run_svgf_frame(Engine& engine, const SvgfFrameBuffers& b, const SvgfParams&
                  ForwardKernel<ConstSignal, RemodulateSink>{w, signal(current), remodulate}, w,
                  h);
   });
+
+  // 6. Optional TAA: the remodulated color blended with the reprojected previous TAA output,
+  //    clamped to this frame's neighbourhood (core/taa.h); its history restarts with SVGF's.
+  if (p.taa) {
+    TemporalAntiAliasing taa;
+    taa.guides = b.guides;
+    taa.current = b.remodulated;
+    taa.history = b.prev_taa;
+    taa.history_out = b.next_taa;
+    taa.output = b.output;
+    taa.has_history = has_history;
+    taa.alpha = p.taa_alpha;
+    engine.run(stage::kTaa, taa, w, h);
+  }
 }
 
 }  // namespace svgf

@@ -13,9 +13,13 @@ inline constexpr const char* kVariance = "variance";
 inline constexpr const char* kAtrous = "atrous";          // all iterations together
 inline constexpr const char* kFeedback = "feedback";      // copy of the feedback tap
 inline constexpr const char* kRemodulate = "remodulate";  // fast mode: in the last iteration
+inline constexpr const char* kTaa = "taa";                // only with --svgf-taa on
 
-inline std::vector<std::string> all() {
-  return {kSanitizeStage, kDemodulate, kReproject, kVariance, kAtrous, kFeedback, kRemodulate};
+inline std::vector<std::string> all(bool taa) {
+  std::vector<std::string> v = {kSanitizeStage, kDemodulate, kReproject, kVariance,
+                                kAtrous,        kFeedback,   kRemodulate};
+  if (taa) v.push_back(kTaa);
+  return v;
 }
 
 }  // namespace svgf::svgf_stage
@@ -27,9 +31,13 @@ inline constexpr const char* kAccumulated = "accumulated";    // 4: color + temp
 inline constexpr const char* kMoments = "moments";            // 2: E[l], E[l^2]
 inline constexpr const char* kHistoryLength = "history_length";  // 1
 inline constexpr const char* kColorHistory = "color_history";    // 3: the feedback tap
+inline constexpr const char* kTaaHistory = "taa_history";        // 3: only with --svgf-taa on
 
-inline std::vector<std::string> all() {
-  return {kIllumination, kAccumulated, kMoments, kHistoryLength, kColorHistory};
+inline std::vector<std::string> all(bool taa) {
+  std::vector<std::string> v = {kIllumination, kAccumulated, kMoments, kHistoryLength,
+                                kColorHistory};
+  if (taa) v.push_back(kTaaHistory);
+  return v;
 }
 
 }  // namespace svgf::svgf_buffer
