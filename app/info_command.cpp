@@ -64,7 +64,7 @@ std::vector<std::pair<const char*, const Image*>> channels_of(const Frame& f) {
       {"color", &f.color},   {"albedo", &f.albedo}, {"normal", &f.normal},
       {"position", &f.position}, {"depth", &f.depth}, {"depth_gradient", &f.depth_gradient},
       {"motion", &f.motion}, {"emission", &f.emission}, {"reference", &f.reference},
-      {"direct", &f.direct}, {"indirect", &f.indirect}};
+      {"direct", &f.direct}, {"indirect", &f.indirect}, {"gradient", &f.gradient}};
   std::vector<std::pair<const char*, const Image*>> present;
   for (const auto& c : v)
     if (!c.second->empty()) present.push_back(c);

@@ -138,6 +138,7 @@ std::vector<ChannelDiff> compare_frames(const Frame& stored, const Frame& render
   if (opt.reference) c.image(stored.reference, rendered.reference, ch::kReference, st.reference);
   c.image(stored.direct, rendered.direct, ch::kDirect, st.color);
   c.image(stored.indirect, rendered.indirect, ch::kIndirect, st.color);
+  c.image(stored.gradient, rendered.gradient, ch::kGradient, io::PixelStorage::Float);
   c.camera(stored.camera, rendered.camera);
   return out;
 }

@@ -16,7 +16,7 @@ std::string generator_tag();                 // "svgf-fixtures 1"
 
 // Half for color, reference, direct, indirect, albedo, normal and position (position follows
 // from depth and camera at float precision anyway); float for depth, depth gradient and motion,
-// whose precision reprojection needs.
+// whose precision reprojection needs. The gradient group is FLOAT (io/exr_frame.h).
 io::FrameStorage fixture_storage();
 
 // The value a float takes after a round trip through `storage` (half rounds to nearest even).

@@ -49,6 +49,7 @@ FrameScene::FrameScene(const EmbreeDevice& device, const SceneDesc& scene, int f
     transforms_.emplace_back(now);
     prev_transforms_.emplace_back(before);
     moved_.push_back(now.translation != before.translation || now.yaw_turns != before.yaw_turns);
+    emission_.push_back(scene.object_emission(i, frame));
   }
   try {
     build(device);
@@ -105,7 +106,7 @@ void FrameScene::build(const EmbreeDevice& device) {
       wq.u_axis = to_float(unit(xf.rotate(lq.e1)));
       wq.v_axis = to_float(unit(xf.rotate(lq.e2)));
       quads_[i].push_back(wq);
-      if (obj.material.is_emitter()) {
+      if (obj.material.is_emitter() && luminance(emission_[i]) > 0.f) {
         Light l;
         l.object = static_cast<int>(i);
         l.quad = static_cast<int>(q);
@@ -114,7 +115,7 @@ void FrameScene::build(const EmbreeDevice& device) {
         l.e2 = wq.e2;
         l.n = wq.n;
         l.area = length(cross(wq.e1, wq.e2));
-        l.emission = obj.material.emission;
+        l.emission = emission_[i];
         l.pick = l.area * luminance(l.emission);
         total_power = total_power + l.pick;
         lights_.push_back(l);

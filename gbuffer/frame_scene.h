@@ -37,6 +37,7 @@ struct WorldQuad {
   Vec3 u_axis, v_axis;  // unit e1 and e2: pattern coordinates in metres
 };
 
+// An emitter quad that emits at this frame (one switched off is not a light).
 struct Light {
   int object = 0, quad = 0;
   Vec3 v0, e1, e2, n;
@@ -77,6 +78,8 @@ class FrameScene {
   // through object space, so their motion is exactly camera motion).
   bool moved(int object) const { return moved_[object] != 0; }
   const Material& material(int object) const { return desc_->objects[object].material; }
+  // Radiance the object's front side emits at this frame (material emission times its scale).
+  Vec3 emission(int object) const { return emission_[object]; }
   const WorldQuad& quad(int object, int q) const { return quads_[object][q]; }
   const std::vector<Light>& lights() const { return lights_; }
   Vec3 albedo(const Hit& hit) const;  // pattern albedo at the hit (emitters: their albedo field)
@@ -89,6 +92,7 @@ class FrameScene {
   CameraModel camera_, prev_camera_;
   std::vector<RigidTransform> transforms_, prev_transforms_;
   std::vector<char> moved_;
+  std::vector<Vec3> emission_;
   std::vector<std::vector<WorldQuad>> quads_;
   std::vector<Light> lights_;
   void* scene_ = nullptr;  // RTCScene

@@ -49,7 +49,7 @@ GBufferSample gbuffer_sample(const FrameScene& scene, int x, int y, const Hit& h
   g.normal = dot(hit.n, dir) < 0.f ? hit.n : neg(hit.n);
   g.albedo = m.is_emitter() ? vec3(1.f) : scene.albedo(hit);
   // One-sided emitters, as trace_path sees them: this is exactly the emitted part of the color.
-  if (m.is_emitter() && dot(hit.n, dir) < 0.f) g.emission = m.emission;
+  if (m.is_emitter() && dot(hit.n, dir) < 0.f) g.emission = scene.emission(hit.object);
   g.mesh_id = static_cast<uint32_t>(hit.object) + 1u;
   const double depth = cam.depth(to_double(hit.p));
   g.depth = static_cast<float>(depth);

@@ -57,7 +57,7 @@ Radiance trace_path(const FrameScene& scene, const Hit& primary, Vec3 dir, const
   Radiance out;
   const Material& first = scene.material(primary.object);
   if (first.is_emitter()) {
-    if (dot(primary.n, dir) < 0.f) out.direct = first.emission;  // one-sided
+    if (dot(primary.n, dir) < 0.f) out.direct = scene.emission(primary.object);  // one-sided
     return out;
   }
   Vec3 throughput = vec3(1.f);

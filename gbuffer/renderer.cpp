@@ -3,11 +3,13 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <limits>
 #include <stdexcept>
 #include <string>
 
 #include "gbuffer/gbuffer.h"
+#include "gbuffer/gradient_samples.h"
 
 namespace svgf::gbuffer {
 
@@ -130,6 +132,18 @@ Frame Renderer::render(const SceneDesc& desc, int frame, const RenderSettings& s
     }
   });
   if (counters && counters->cancel.load()) throw std::runtime_error("rendering interrupted");
+  if (settings.gradients) {
+    // No earlier frame of this shot: the group is there, with no samples.
+    const std::vector<int>& cuts = desc.camera_cuts;
+    if (frame == 0 || std::find(cuts.begin(), cuts.end(), frame) != cuts.end()) {
+      f.gradient = Image(w, h, 3);
+    } else {
+      const FrameScene previous(device_, desc, frame - 1, w, h);
+      uint64_t rays = 0;
+      f.gradient = gradient_samples(previous, scene, settings, rays);
+      if (counters) counters->rays.fetch_add(rays, std::memory_order_relaxed);
+    }
+  }
   return f;
 }
 

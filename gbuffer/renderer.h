@@ -23,6 +23,8 @@ struct RenderSettings {
   uint64_t seed = 1;
   PathSettings path;
   bool split = true;      // also fill `direct` and `indirect`
+  // Also fill `gradient` (gradient_samples.h): all zeros at frame 0 and at camera cuts.
+  bool gradients = false;
 };
 
 // Throws std::invalid_argument naming the first bad setting.

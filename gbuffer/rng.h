@@ -26,8 +26,10 @@ inline Philox4 philox4x32_10(Philox4 ctr, uint32_t k0, uint32_t k1) {
 // Top 24 bits as a float in [0, 1): exactly representable, never 1.
 inline float to_unit_float(uint32_t bits) { return static_cast<float>(bits >> 8) * 0x1p-24f; }
 
-// Streams keep the 1-spp color and the reference statistically independent.
-enum class Stream : uint32_t { Color = 0, Reference = 1 };
+// Streams keep the 1-spp color and the reference statistically independent. GradientPick only
+// picks the pixel of each A-SVGF stratum (gradient_samples.h); the re-shaded paths reuse the
+// Color stream's keys.
+enum class Stream : uint32_t { Color = 0, Reference = 1, GradientPick = 2 };
 
 // The counter of one camera sample; bounce and group select the numbers within its path.
 struct SampleKey {

@@ -37,6 +37,9 @@ struct Object {
   Material material;
   std::vector<LocalQuad> quads;             // object space
   std::function<Pose(double frame)> pose;   // empty: identity at every frame
+  // Emitters: factor on material.emission at a frame (a light switching off or dimming); empty:
+  // 1. Geometry stays: an emitter at 0 is a black quad that reflects nothing and is not sampled.
+  std::function<float(double frame)> emission_scale;
 };
 
 struct SceneDesc {
@@ -51,10 +54,16 @@ struct SceneDesc {
   int frames = 12;
   int spp = 1;
   int reference_spp = 1024;
+  bool gradients = false;  // A-SVGF gradient samples (RenderSettings::gradients)
 
   Pose object_pose(size_t object, double frame) const {
     const auto& f = objects[object].pose;
     return f ? f(frame) : Pose{};
+  }
+  // Radiance the object's front side emits at `frame` (0 for non-emitters).
+  Vec3 object_emission(size_t object, double frame) const {
+    const Object& o = objects[object];
+    return o.emission_scale ? o.material.emission * o.emission_scale(frame) : o.material.emission;
   }
 };
 

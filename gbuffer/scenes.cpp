@@ -152,11 +152,68 @@ SceneDesc cut() {
   return s;
 }
 
+// Scenes for anti-lag (A-SVGF's temporal gradients): lighting that changes where nothing moves.
+// Small committed fixtures (64x64) with gradient samples, to stay within the fixture budget.
+void anti_lag_defaults(SceneDesc& s) {
+  s.width = 64;
+  s.height = 64;
+  s.gradients = true;
+}
+
+SceneDesc moving_shadow() {
+  SceneDesc s;
+  s.name = "moving-shadow";
+  s.summary = "a slab floating across under a small light: its hard shadow sweeps over the floor";
+  anti_lag_defaults(s);
+  const V lo(-1.2, 0, -1.2), hi(1.2, 2, 1.2);
+  s.objects.push_back(placed("floor", kWhite, {room_face(lo, hi, kFloor)}, V(0)));
+  s.objects.push_back(placed("ceiling", kWhite, {room_face(lo, hi, kCeiling)}, V(0)));
+  s.objects.push_back(placed("back", kWhite, {room_face(lo, hi, kBack)}, V(0)));
+  s.objects.push_back(placed("left", kRed, {room_face(lo, hi, kLeft)}, V(0)));
+  s.objects.push_back(placed("right", kGreen, {room_face(lo, hi, kRight)}, V(0)));
+  // 0.16 m square, as bright in total as the Cornell light: a penumbra of ~6 cm on the floor.
+  s.objects.push_back(placed("light", emitter(332.f, 273.f, 195.f),
+                             {ceiling_light(-0.07, 1.998, -0.21, 0.16, 0.16)}, V(0)));
+  // 0.6 m above the floor, 0.13 m/frame: its shadow (~0.72 m, ~15 px at 64x64) moves ~4 px a
+  // frame. Seen from above, in front of the slab, so the slab hides none of its shadow.
+  s.objects.push_back(make_object("slab", kBlue, box(V(0.5, 0.06, 0.5)), [](double t) {
+    return Pose{V(-0.74 + 0.13 * t, 0.6, -0.12), 0.01 * t};
+  }));
+  s.camera = [](double) {
+    return CameraPose{V(0.031, 1.85, 1.6), V(0.017, 0.0, -0.3), 55.0};
+  };
+  return s;
+}
+
+SceneDesc light_switch() {
+  SceneDesc s;
+  s.name = "light-switch";
+  s.summary = "Cornell box lit by two lights; the larger switches off at frame 6";
+  anti_lag_defaults(s);
+  constexpr int kSwitch = 6;
+  const V lo(-1, 0, -1), hi(1, 2, 1);
+  s.objects.push_back(placed("floor", kWhite, {room_face(lo, hi, kFloor)}, V(0)));
+  s.objects.push_back(placed("ceiling", kWhite, {room_face(lo, hi, kCeiling)}, V(0)));
+  s.objects.push_back(placed("back", kWhite, {room_face(lo, hi, kBack)}, V(0)));
+  s.objects.push_back(placed("left", kRed, {room_face(lo, hi, kLeft)}, V(0)));
+  s.objects.push_back(placed("right", kGreen, {room_face(lo, hi, kRight)}, V(0)));
+  Object a = placed("light-a", kLight, {ceiling_light(-0.75, 1.998, -0.45, 0.45, 0.45)}, V(0));
+  a.emission_scale = [](double t) { return t < kSwitch ? 1.f : 0.f; };
+  s.objects.push_back(a);
+  s.objects.push_back(placed("light-b", emitter(20.f, 24.f, 30.f),
+                             {ceiling_light(0.4, 1.998, 0.05, 0.35, 0.35)}, V(0)));
+  s.objects.push_back(placed("tall-box", kWhite, box(V(0.5, 1.1, 0.5)), V(-0.4, 0, -0.35), 0.06));
+  s.objects.push_back(placed("short-box", kWhite, box(V(0.55, 0.55, 0.55)), V(0.4, 0, 0.3), -0.05));
+  s.camera = [](double) { return cornell_view(); };
+  return s;
+}
+
 }  // namespace
 
 const std::vector<SceneDesc>& scene_library() {
-  static const std::vector<SceneDesc> scenes = {cornell_static(), cornell_moving(), camera_pan(),
-                                                textured(),       thin(),           cut()};
+  static const std::vector<SceneDesc> scenes = {
+      cornell_static(), cornell_moving(), camera_pan(), textured(),
+      thin(),           cut(),            moving_shadow(), light_switch()};
   return scenes;
 }
 

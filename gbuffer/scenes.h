@@ -1,5 +1,6 @@
 #pragma once
-// The built-in scenes (scenes.cpp): cornell-static, cornell-moving, camera-pan, textured, thin, cut.
+// The built-in scenes (scenes.cpp): cornell-static, cornell-moving, camera-pan, textured, thin, cut,
+// moving-shadow, light-switch.
 #include <string>
 #include <vector>
 

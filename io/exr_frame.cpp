@@ -327,6 +327,7 @@ FrameHeader inspect_header(const std::string& path, const ExrReader& r,
   r.check_group(channel::kReference, true);
   r.check_group(channel::kDirect, true);
   r.check_group(channel::kIndirect, true);
+  r.check_group(channel::kGradient, true);
   return h;
 }
 
@@ -358,6 +359,8 @@ void write_frame(const std::string& path, const Frame& frame, const FrameStorage
     w.add_group(channel::kReference, frame.reference, storage.reference);
   if (!frame.direct.empty()) w.add_group(channel::kDirect, frame.direct, storage.color);
   if (!frame.indirect.empty()) w.add_group(channel::kIndirect, frame.indirect, storage.color);
+  if (!frame.gradient.empty())
+    w.add_group(channel::kGradient, frame.gradient, PixelStorage::Float);
   write_exr(path, w);
 }
 
@@ -391,6 +394,7 @@ Frame read_frame_from(Imf::InputFile& file, const std::string& path, bool* has_i
   f.reference = r.read_group(channel::kReference, true);
   f.direct = r.read_group(channel::kDirect, true);
   f.indirect = r.read_group(channel::kIndirect, true);
+  f.gradient = r.read_group(channel::kGradient, true);
   r.read(file);
   return f;
 }

@@ -20,6 +20,7 @@ struct FrameStorage {
   PixelStorage position = PixelStorage::Float;
   PixelStorage depth = PixelStorage::Float;      // depth and depth gradient
   PixelStorage motion = PixelStorage::Float;
+  // The gradient group is always FLOAT: its two luminances are compared with each other.
 };
 
 // Channel names, in one place.
@@ -36,6 +37,8 @@ inline constexpr const char* kEmission[3] = {"emission.R", "emission.G", "emissi
 inline constexpr const char* kReference[3] = {"reference.R", "reference.G", "reference.B"};
 inline constexpr const char* kDirect[3] = {"direct.R", "direct.G", "direct.B"};
 inline constexpr const char* kIndirect[3] = {"indirect.R", "indirect.G", "indirect.B"};
+inline constexpr const char* kGradient[3] = {"gradient.previous", "gradient.current",
+                                             "gradient.mask"};
 }  // namespace channel
 
 // Writes `frame` to `path` atomically (a temporary file in the same folder, then rename).

@@ -3,6 +3,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -53,7 +54,8 @@ bool same_frame_bits(const Frame& a, const Frame& b) {
          same_bits(a.motion.data(), b.motion.data()) && a.mesh_id == b.mesh_id &&
          same_bits(a.reference.data(), b.reference.data()) &&
          same_bits(a.direct.data(), b.direct.data()) &&
-         same_bits(a.indirect.data(), b.indirect.data());
+         same_bits(a.indirect.data(), b.indirect.data()) &&
+         same_bits(a.gradient.data(), b.gradient.data());
 }
 
 Vec3 load3(const Image& im, int x, int y) {
@@ -199,8 +201,10 @@ TEST_CASE("depth gradient is the derivative of the tangent plane's depth", "[gbu
 }
 
 TEST_CASE("scene library and bad input", "[gbuffer][scenes]") {
-  for (const char* name : {"cornell-static", "cornell-moving", "camera-pan", "textured", "thin", "cut"})
+  for (const char* name : {"cornell-static", "cornell-moving", "camera-pan", "textured", "thin",
+                           "cut", "moving-shadow", "light-switch"})
     CHECK(find_scene(name).name == name);
+  CHECK(scene_library().size() == 8u);
   CHECK_THROWS_WITH(find_scene("nope"), Catch::Contains("unknown scene 'nope'") &&
                                             Catch::Contains("cornell-static"));
   CHECK(find_scene("cut").camera_cuts == std::vector<int>{6});
@@ -413,6 +417,7 @@ TEST_CASE("the same seed gives the same bits, on any thread count", "[gbuffer][d
   const SceneDesc& scene = find_scene("cornell-moving");
   RenderSettings s = small(40, 32);
   s.reference_spp = 4;
+  s.gradients = true;
   Frame one, two;
   tbb::task_arena(1).execute([&] { one = renderer().render(scene, 3, s); });
   tbb::task_arena(2).execute([&] { two = renderer().render(scene, 3, s); });
@@ -436,13 +441,12 @@ TEST_CASE("committed manifests match the committed files", "[gbuffer][fixtures]"
     const io::Manifest m = io::read_manifest(dir);
     CHECK(m.scene == scene.name);
     CHECK(m.generator == generator_tag());
-    CHECK(m.width >= 128);
-    CHECK(m.width <= 256);
-    CHECK(m.height >= 128);
-    CHECK(m.height <= 256);
-    CHECK(m.frames.size() >= 8);
-    CHECK(m.frames.size() <= 24);
-    CHECK(m.reference_spp >= 1024);
+    // The scene's defaults are the committed fixture's settings (`generate --all` remakes them).
+    CHECK(m.width == scene.width);
+    CHECK(m.height == scene.height);
+    CHECK(m.frames.size() == static_cast<size_t>(scene.frames));
+    CHECK(m.spp == scene.spp);
+    CHECK(m.reference_spp == scene.reference_spp);
     std::vector<int> cuts;
     for (int c : scene.camera_cuts)
       if (c < static_cast<int>(m.frames.size())) cuts.push_back(c);
@@ -451,18 +455,37 @@ TEST_CASE("committed manifests match the committed files", "[gbuffer][fixtures]"
       INFO(file.name);
       CHECK(io::sha256_file(dir + "/" + file.name) == file.sha256);
     }
+    // Gradient samples where the scene has them by default: none at frame 0, some at frame 1.
+    const io::Sequence seq(dir);
+    const Frame first = seq.read(0), second = seq.read(1);
+    CHECK(first.gradient.empty() == !scene.gradients);
+    CHECK(second.gradient.empty() == !scene.gradients);
+    if (scene.gradients) {
+      const std::vector<float>& m0 = first.gradient.data();
+      CHECK(std::count(m0.begin(), m0.end(), 0.f) == static_cast<long>(m0.size()));
+      const float* mask = second.gradient.plane(2);
+      CHECK(std::count(mask, mask + second.gradient.pixel_count(), 1.f) > 100);
+    }
     for (const auto& e : fs::directory_iterator(dir)) total += e.file_size();
   }
   CHECK(total <= 30u * 1000u * 1000u);
 }
 
-TEST_CASE("re-rendering a committed fixture's first frame reproduces it", "[gbuffer][fixtures]") {
-  for (const char* name : {"cornell-moving", "camera-pan"}) {
+TEST_CASE("re-rendering a committed fixture's frame reproduces it", "[gbuffer][fixtures]") {
+  struct Case {
+    const char* scene;
+    int frame;
+  };
+  // The light switches off at frame 6 of light-switch: its gradient samples darken there.
+  for (const Case& c : {Case{"cornell-moving", 0}, Case{"camera-pan", 0}, Case{"light-switch", 6},
+                        Case{"moving-shadow", 4}}) {
+    const std::string name = c.scene;
     const io::Sequence seq(fixture_dir(name));
     RenderSettings s = settings_from_manifest(seq.manifest());
     s.reference_spp = 0;  // the 1024-spp reference is left to `svgf-fixtures verify`
-    const Frame stored = seq.read(0);
-    const Frame fresh = renderer().render(find_scene(name), 0, s);
+    const Frame stored = seq.read(c.frame);
+    s.gradients = !stored.gradient.empty();
+    const Frame fresh = renderer().render(find_scene(name), c.frame, s);
     CompareOptions options;
     options.reference = false;
     const std::vector<ChannelDiff> diffs = compare_frames(stored, fresh, fixture_storage(), options);

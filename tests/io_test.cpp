@@ -536,6 +536,44 @@ TEST_CASE("write_frame rejects an inconsistent frame", "[io][exr][errors]") {
   CHECK(list_dir(tmp.path).empty());
 }
 
+// Issue 12: A-SVGF gradient samples travel as an optional FLOAT group, whatever the storage.
+TEST_CASE("the gradient group: FLOAT round trip, optional, all or nothing", "[io][exr]") {
+  TempDir tmp;
+  Frame f = random_frame(10, 7, 21);
+  f.gradient = Image(10, 7, 3);
+  std::mt19937 rng(4);
+  fill(f.gradient, rng, 0.f, 3.f);
+  for (int y = 0; y < 7; ++y)
+    for (int x = 0; x < 10; ++x) {
+      const bool sample = (x % 3 == 1) && (y % 3 == 2);
+      f.gradient.at(x, y, 2) = sample ? 1.f : 0.f;
+      if (!sample) f.gradient.at(x, y, 0) = f.gradient.at(x, y, 1) = 0.f;
+    }
+  f.gradient.at(1, 2, 1) = 0.1f + 1e-7f;  // not a half: must come back bit for bit
+  const io::PixelStorage H = io::PixelStorage::Half;
+  io::write_frame(tmp / "g.exr", f, io::FrameStorage{H, H, H, H, H, H, H});
+  const Frame r = io::read_frame(tmp / "g.exr");
+  CHECK(bitwise_equal(r.gradient, f.gradient));
+  CHECK(half_equal(r.color, f.color));
+  CHECK_NOTHROW(check_frame_consistent(r));
+
+  f.gradient = Image();
+  io::write_frame(tmp / "none.exr", f);
+  CHECK(io::read_frame(tmp / "none.exr").gradient.empty());
+
+  ChannelTypes c = required_channels();
+  c.push_back({"gradient.previous", Imf::FLOAT});
+  c.push_back({"gradient.current", Imf::FLOAT});
+  write_raw_exr(tmp / "part.exr", 5, 4, c);
+  CHECK(io_error_of([&] { io::read_frame(tmp / "part.exr"); }) ==
+        tmp / "part.exr" + ": channel 'gradient.mask' is missing");
+  CHECK(io_error_of([&] { io::read_frame_header(tmp / "part.exr"); }) ==
+        tmp / "part.exr" + ": channel 'gradient.mask' is missing");
+
+  f.gradient = Image(10, 7, 2);
+  CHECK_THROWS_WITH(check_frame_consistent(f), Contains("'gradient'") && Contains("10x7x3"));
+}
+
 TEST_CASE("write_frame into a missing folder throws IoError and leaves nothing", "[io][exr]") {
   TempDir tmp;
   const std::string path = tmp / "no/such/folder/f.exr";

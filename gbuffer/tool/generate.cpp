@@ -76,7 +76,7 @@ void generate_one(const Renderer& renderer, const Job& job, const fs::path& out)
 
 struct GenerateArgs {
   std::vector<std::string> names;
-  bool all = false, split = false;
+  bool all = false, split = false, gradients = false, no_gradients = false;
   std::string size;
   std::optional<int> frames, spp, reference_spp;
   uint64_t seed = 1;
@@ -117,6 +117,7 @@ int run_generate(const GenerateArgs& a) {
       j.settings.reference_spp = reference_spp.value_or(s->reference_spp);
       j.settings.seed = seed;
       j.settings.split = split;
+      j.settings.gradients = a.gradients || (s->gradients && !a.no_gradients);
       validate(j.settings);
       jobs.push_back(j);
     }
@@ -144,7 +145,8 @@ void add_generate(CLI::App& tool, int& status) {
   auto a = std::make_shared<GenerateArgs>();
   CLI::App* sub = tool.add_subcommand("generate", "render scenes into sequence folders");
   sub->footer("Writes DIR/<scene>/ atomically; the scene defaults (list) reproduce the committed\n"
-              "fixtures; --split adds the direct and indirect channels.");
+              "fixtures; --split adds the direct and indirect channels, --gradients the A-SVGF\n"
+              "gradient samples (docs/frame-format.md).");
   sub->add_option("--scene", a->names, "a scene to render (repeatable; list names them)")
       ->type_name("NAME");
   sub->add_flag("--all", a->all, "every scene");
@@ -166,6 +168,11 @@ void add_generate(CLI::App& tool, int& status) {
   sub->add_option("--out", a->out, "output folder (default " + default_fixture_dir() + ")")
       ->type_name("DIR");
   sub->add_flag("--split", a->split, "also the direct and indirect channels");
+  CLI::Option* gradients = sub->add_flag(
+      "--gradients", a->gradients,
+      "also A-SVGF gradient samples (default: the scene's, list shows it)");
+  sub->add_flag("--no-gradients", a->no_gradients, "no gradient samples, whatever the scene's default")
+      ->excludes(gradients);
   sub->add_option("--threads", a->threads, "render threads (default: all cores)")
       ->type_name("N")->check(CLI::Range(1, 1024));
   sub->callback([a, &status] { status = run_generate(*a); });

@@ -82,6 +82,7 @@ int verify_one(const Renderer& renderer, const fs::path& dir, const VerifyOption
     Progress progress(m.scene, frames, settings.height, counters);
     for (int k = 0; k < frames; ++k) {
       const Frame stored = seq.read(k);
+      settings.gradients = !stored.gradient.empty();  // the manifest does not say; the file does
       const Frame fresh = renderer.render(*scene, k, settings, &counters);
       if (stored.index != k) report(seq.path(k), "frame number " + std::to_string(stored.index));
       for (const ChannelDiff& d : compare_frames(stored, fresh, fixture_storage(), copt))

@@ -46,6 +46,7 @@ bool same_frame(const Frame& a, const Frame& b) {
          same_bits(a.motion, b.motion) && a.mesh_id == b.mesh_id &&
          same_bits(a.emission, b.emission) && same_bits(a.reference, b.reference) &&
          same_bits(a.direct, b.direct) && same_bits(a.indirect, b.indirect) &&
+         same_bits(a.gradient, b.gradient) &&
          std::memcmp(&a.camera, &b.camera, sizeof(Camera)) == 0;  // bits: NaNs compare too
 }
 
