@@ -7,6 +7,10 @@
 
 namespace svgf::svgf_stage {
 
+// A-SVGF (--antilag gradient, on frames with gradient samples), before the reprojection.
+inline constexpr const char* kGradient = "gradient";                // samples per stratum
+inline constexpr const char* kGradientAtrous = "gradient_atrous";   // all iterations together
+inline constexpr const char* kGradientLambda = "gradient_lambda";
 inline constexpr const char* kDemodulate = "demodulate";  // fast mode: + reproject, one launch
 inline constexpr const char* kReproject = "reproject";
 inline constexpr const char* kVariance = "variance";
@@ -15,7 +19,8 @@ inline constexpr const char* kFeedback = "feedback";      // copy of the feedbac
 inline constexpr const char* kRemodulate = "remodulate";  // fast mode: in the last iteration
 
 inline std::vector<std::string> all() {
-  return {kSanitizeStage, kDemodulate, kReproject, kVariance, kAtrous, kFeedback, kRemodulate};
+  return {kSanitizeStage, kGradient,  kGradientAtrous, kGradientLambda, kDemodulate,
+          kReproject,     kVariance,  kAtrous,         kFeedback,       kRemodulate};
 }
 
 }  // namespace svgf::svgf_stage
