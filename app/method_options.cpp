@@ -73,8 +73,12 @@ void MethodParamFlags::add_to(CLI::App& app) {
        [](DenoiserConfig& c, bool v) { c.svgf.taa = v; })->check(on_off);
   flag("svgf-taa-alpha", "A", svgf, "its blend toward the new frame (default 0.1)",
        [](DenoiserConfig& c, float v) { c.svgf.taa_alpha = v; })->check(cli::NotNaN);
-  flag("antilag", "on|off", svgf, "shorten a history its neighbourhood contradicts (default off)",
-       [](DenoiserConfig& c, bool v) { c.svgf.antilag = v; })->check(on_off);
+  const CLI::Validator antilag = cli::accepted_by([](const std::string& s) { parse_antilag(s); });
+  flag("antilag", "MODE", svgf,
+       "shorten a history the frame contradicts: off, statistics (alias on: its neighbourhood) or "
+       "gradient (A-SVGF's gradient samples; statistics on frames without) (default off)",
+       [](DenoiserConfig& c, const std::string& v) { c.svgf.antilag = parse_antilag(v); })
+      ->check(antilag);
   flag("antilag-radius", "R", svgf, "... the (2R+1)^2 neighbourhood (default 2)",
        [](DenoiserConfig& c, int v) { c.svgf.antilag_radius = v; })
       ->check(CLI::Range(1, 3));
@@ -84,6 +88,13 @@ void MethodParamFlags::add_to(CLI::App& app) {
        [](DenoiserConfig& c, float v) { c.svgf.antilag_high = v; })->check(cli::NotNaN);
   flag("antilag-relative", "R", svgf, "... tolerance + R x luminance (default 0.05)",
        [](DenoiserConfig& c, float v) { c.svgf.antilag_relative = v; })->check(cli::NotNaN);
+  flag("gradient-iterations", "N", svgf, "A-SVGF: a-trous steps over the gradients (default 3)",
+       [](DenoiserConfig& c, int v) { c.svgf.gradient_iterations = v; })
+      ->check(CLI::Range(0, 8));
+  flag("gradient-phi-depth", "X", svgf, "... their depth edge-stopping (default 1)",
+       [](DenoiserConfig& c, float v) { c.svgf.gradient_phi_depth = v; })->check(cli::NotNaN);
+  flag("gradient-phi-normal", "X", svgf, "... their normal exponent (default 128)",
+       [](DenoiserConfig& c, float v) { c.svgf.gradient_phi_normal = v; })->check(cli::NotNaN);
   flag("phi-normal", "X", svgf, "normal edge-stopping exponent (default 128)",
        [](DenoiserConfig& c, float v) { c.svgf.phi_normal = v; })->check(cli::NotNaN);
   flag("phi-depth", "X", svgf, "depth edge-stopping, 0 = no depth term (default 1)",

@@ -30,7 +30,14 @@ std::string params_key(const DenoiserConfig& d) {
       unless_default("pd", p.phi_depth, def.phi_depth);
       unless_default("cap", static_cast<float>(p.history_cap), static_cast<float>(def.history_cap));
       if (p.variance_of_mean != def.variance_of_mean) s << (p.variance_of_mean ? " vom" : " novom");
-      if (p.antilag) s << " antilag" << p.antilag_low << '-' << p.antilag_high << '/' << p.antilag_relative;
+      // Gradient mode falls back to the statistics rule, so both carry its thresholds.
+      if (p.antilag == Antilag::Gradient) {
+        s << " asvgf" << p.gradient_iterations;
+        unless_default("gpd", p.gradient_phi_depth, def.gradient_phi_depth);
+        unless_default("gpn", p.gradient_phi_normal, def.gradient_phi_normal);
+      }
+      if (p.antilag != Antilag::Off)
+        s << " antilag" << p.antilag_low << '-' << p.antilag_high << '/' << p.antilag_relative;
       if (p.taa) s << " taa" << p.taa_alpha;
       break;
     }
@@ -87,10 +94,13 @@ json params_json(const DenoiserConfig& d) {
               {"alpha", p.alpha},           {"moments_alpha", p.moments_alpha},
               {"phi_color", p.phi_color},   {"phi_normal", p.phi_normal},
               {"phi_depth", p.phi_depth},   {"history_cap", p.history_cap},
-              {"variance_of_mean", p.variance_of_mean}, {"antilag", p.antilag},
+              {"variance_of_mean", p.variance_of_mean}, {"antilag", to_string(p.antilag)},
               {"antilag_low", p.antilag_low}, {"antilag_high", p.antilag_high},
-              {"antilag_relative", p.antilag_relative}, {"taa", p.taa},
-              {"taa_alpha", p.taa_alpha}};
+              {"antilag_relative", p.antilag_relative},
+              {"gradient_iterations", p.gradient_iterations},
+              {"gradient_phi_depth", p.gradient_phi_depth},
+              {"gradient_phi_normal", p.gradient_phi_normal},
+              {"taa", p.taa}, {"taa_alpha", p.taa_alpha}};
     }
     case Method::Wavelet: {
       const WaveletParams& p = d.wavelet;
@@ -185,7 +195,7 @@ std::vector<RunConfig> svgf_preset_configs(Backend backend, Mode mode, int threa
     v.push_back(c);
   }
   RunConfig antilag = v.back();
-  antilag.denoiser.svgf.antilag = true;
+  antilag.denoiser.svgf.antilag = Antilag::Statistics;
   v.push_back(antilag);
   RunConfig taa = project_config("svgf", backend, mode, threads);  // the defaults + TAA
   taa.denoiser.svgf.taa = true;

@@ -6,12 +6,24 @@
 
 namespace svgf {
 
+// A-SVGF's gradient samples (Frame::gradient), three planes of the frame's size: the previous
+// and the current luminance of the one re-shaded sample of each stratum, and its mask (1 at the
+// pixel that holds the sample, else 0). Not sanitized: the gradient stage ignores a sample whose
+// luminances are not radiance (methods/svgf/gradient.h).
+struct GradientSampleView {
+  const float* previous = nullptr;
+  const float* current = nullptr;
+  const float* mask = nullptr;
+  SVGF_HD bool present() const { return mask != nullptr; }
+};
+
 struct FrameInputs {
   GuideView guides;
   ConstRgbView color;
   ConstRgbView albedo;
   ConstRgbView emission;  // no planes when the frame has no emission channel
   ConstRgbView position;  // world positions, for methods that ask for them (else no planes)
+  GradientSampleView gradient;  // no planes when the frame has no gradient samples
 };
 
 }  // namespace svgf

@@ -9,7 +9,8 @@
 //                                          its planes as views; a host copy
 //   bool resize(w, h)                      frame size (true when buffers must be reallocated)
 //   FrameInputs inputs(frame, position)    this frame's inputs on the backend's side (world
-//                                          positions only when asked for)
+//                                          positions only when asked for; the gradient
+//                                          samples when the frame has them)
 //   GuideView previous_guides()            the guides of the frame before (valid after one frame)
 //   RgbView output(out)                    where the frame's output goes
 //   void finish(frame, out)                after the frame: output to the host, guides kept
@@ -72,6 +73,7 @@ class CpuBackend {
     if (!f.emission.empty()) in.emission = f.emission.rgb();
     if (position) in.position = f.position.rgb();
     if (engine_.tallies().any()) in = repaired_inputs(f, position);
+    in.gradient = gradient_samples(f);
     current_guides_ = in.guides;
     return in;
   }
@@ -121,6 +123,16 @@ class CpuBackend {
   }
 
  private:
+  // The gradient samples, in place (the sanitize stage does not read them).
+  static GradientSampleView gradient_samples(const Frame& f) {
+    GradientSampleView g;
+    if (f.gradient.empty()) return g;
+    g.previous = f.gradient.plane(0);
+    g.current = f.gradient.plane(1);
+    g.mask = f.gradient.plane(2);
+    return g;
+  }
+
   static InputPlanes input_planes(const Frame& f, bool position) {
     InputPlanes p;
     p.color = f.color.rgb();

@@ -124,9 +124,14 @@ class CudaBackend {
     const bool emission = !in.emission.empty();
     if (emission)
       for (int c = 0; c < 3; ++c) stage(in.emission.plane(c), kEmission + c);
+    const bool gradient = !in.gradient.empty();
+    if (gradient)
+      for (int c = 0; c < 3; ++c) stage(in.gradient.plane(c), kGradient + c);
+    // The optional planes come last: the upload stops after the last one the frame has (a
+    // frame with gradient samples but no emission sends the unused emission planes along).
+    const int planes = gradient ? kInputPlanes : (emission ? kGradient : kRequiredPlanes);
     engine_.mark(kUploadStage);
-    inputs_[slot_].upload_async(staging, (emission ? kInputPlanes : kRequiredPlanes) * n,
-                                engine_.stream());
+    inputs_[slot_].upload_async(staging, planes * n, engine_.stream());
     if (position) {
       if (position_.size() != 3 * n) {
         allocate(position_, 3, "world positions");
@@ -141,6 +146,11 @@ class CudaBackend {
     f.albedo = rgb(inputs_[slot_], kAlbedo);
     if (emission) f.emission = rgb(inputs_[slot_], kEmission);
     if (position) f.position = rgb(position_, 0);
+    if (gradient) {
+      f.gradient.previous = plane(inputs_[slot_], kGradient);
+      f.gradient.current = plane(inputs_[slot_], kGradient + 1);
+      f.gradient.mask = plane(inputs_[slot_], kGradient + 2);
+    }
     sanitize(f, emission, position);
     return f;
   }
@@ -188,7 +198,8 @@ class CudaBackend {
   }
 
   // Planes of one frame's upload, in order; mesh_id travels as raw 32-bit words. The optional
-  // emission comes last, so a frame without it uploads kRequiredPlanes only.
+  // emission and gradient samples come last, so a frame without them uploads kRequiredPlanes
+  // only.
   enum InputPlane : int {
     kColor = 0,     // 3
     kAlbedo = 3,    // 3
@@ -201,7 +212,8 @@ class CudaBackend {
     kMeshId = 14,
     kRequiredPlanes = 15,
     kEmission = 15,  // 3, optional
-    kInputPlanes = 18
+    kGradient = 18,  // 3, optional: A-SVGF's previous, current luminance and mask
+    kInputPlanes = 21
   };
 
   static LaunchShape checked_shape(const EngineConfig& config) {

@@ -260,6 +260,15 @@ TEST_CASE("svgf flags: --svgf-preset picks the paper's or Falcor's values, flags
   REQUIRE_THROWS_WITH(params({"--phi-color", "x"}), Catch::Contains("--phi-color"));
   CHECK(params({"--feedback-tap", "-1"}).feedback_tap == -1);  // a negative value, not a flag
   CHECK(params({"--antilag=on", "--antilag-low", "2"}).antilag_low == 2.f);
+  CHECK(params({"--antilag=on"}).antilag == Antilag::Statistics);  // today's 'on'
+  CHECK(params({"--antilag", "statistics"}).antilag == Antilag::Statistics);
+  const SvgfParams asvgf = params({"--antilag", "gradient", "--gradient-iterations", "5"});
+  CHECK(asvgf.antilag == Antilag::Gradient);
+  CHECK(asvgf.gradient_iterations == 5);
+  CHECK(params({}).antilag == Antilag::Off);
+  REQUIRE_THROWS_WITH(params({"--antilag", "yes"}),
+                      Catch::Contains("--antilag") && Catch::Contains("off, statistics (or on) or gradient"));
+  REQUIRE_THROWS_WITH(params({"--gradient-iterations", "9"}), Catch::Contains("--gradient-iterations"));
   const SvgfParams taa = params({"--svgf-taa", "on", "--svgf-taa-alpha", "0.25"});
   CHECK(taa.taa);
   CHECK(taa.taa_alpha == 0.25f);

@@ -6,6 +6,6 @@ svgf_add_tests(svgf_core_tests
 # own arithmetic for the stage) CUDA fast.
 svgf_add_device_tests(svgf_stage_tests
   SOURCES sanitize_test.cpp svgf_demodulate_test.cpp svgf_reproject_test.cpp svgf_variance_test.cpp
-          svgf_atrous_test.cpp wavelet_test.cpp jbf_test.cpp bmfr_test.cpp
+          svgf_atrous_test.cpp svgf_gradient_test.cpp wavelet_test.cpp jbf_test.cpp bmfr_test.cpp
           taa_test.cpp
   LIBS svgf_cpu svgf_pipeline svgf_io svgf_metrics)

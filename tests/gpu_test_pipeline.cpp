@@ -77,6 +77,17 @@ std::vector<Source> sources() {
       f.color.at(100, 60, 2) = -2.f;
       f.color.at(200, 116, 0) = 3e-39f;  // subnormal: kept, not replaced
     }
+    // A-SVGF's gradient samples from frame 1 on (read by --antilag gradient only), one per 3x3
+    // stratum: the square's strata changed by half, the rest not at all.
+    f.gradient = Image(f.width(), f.height(), 3);
+    if (k > 0)
+      for (int y = k % kGradientStratum; y < f.height(); y += kGradientStratum)
+        for (int x = (k + y) % kGradientStratum; x < f.width(); x += kGradientStratum) {
+          const float l = luminance(f.reference.rgb().load(y * f.width() + x));
+          f.gradient.at(x, y, 0) = scene.on_square(x, y, k) ? 1.5f * l : l;
+          f.gradient.at(x, y, 1) = l;
+          f.gradient.at(x, y, 2) = 1.f;
+        }
     return f;
   };
   s.cut = [](int k) { return k == 6; };
@@ -93,11 +104,15 @@ TEST_CASE("pipeline: CPU vs CUDA exact bitwise over whole sequences; fast within
   // The defaults, and the converging configuration with the anti-lag (its neighbourhood reads
   // and the variance of the mean) on every fixture too.
   SvgfParams converge = svgf_preset("converge");
-  converge.antilag = true;
+  converge.antilag = Antilag::Statistics;
+  SvgfParams gradient;  // A-SVGF: only the synthetic sequence carries gradient samples
+  gradient.antilag = Antilag::Gradient;
   const std::pair<std::string, SvgfParams> settings[] = {{"defaults", SvgfParams()},
-                                                         {"converge + antilag", converge}};
+                                                         {"converge + antilag", converge},
+                                                         {"gradient antilag", gradient}};
   for (const auto& [setting, params] : settings)
   for (const Source& src : sources()) {
+    if (params.antilag == Antilag::Gradient && src.name.rfind("synthetic", 0) != 0) continue;
     tally().sequences.push_back(src.name + " (" + std::to_string(src.frames) + " frames, " +
                                 setting + ")");
     const auto make = [&, params = params](Backend b, Mode m) {
@@ -196,7 +211,7 @@ TEST_CASE("parameter sweep: CPU vs CUDA exact bitwise, fast within tolerance, ev
   with("preset paper", [](SvgfParams& p) { p = svgf_preset("paper"); });
   with("preset converge", [](SvgfParams& p) { p = svgf_preset("converge"); });
   with("antilag, relative 0", [](SvgfParams& p) {
-    p.antilag = true;
+    p.antilag = Antilag::Statistics;
     p.antilag_relative = 0.f;
   });
   for (const auto& [name, p] : settings) {

@@ -113,7 +113,7 @@ void static_sequence_accumulates_mean(const TestDevice& d) {
 void antilag_shortens_contradicted_history(const TestDevice& d) {
   const auto run = [&](bool antilag, float planted) {
     ReprojectRig rig(d, 9, 9);
-    rig.params.antilag = antilag;
+    rig.params.antilag = antilag ? Antilag::Statistics : Antilag::Off;
     rig.params.antilag_relative = 0.1f;
     rig.params.antilag_low = 3.f;
     rig.params.antilag_high = 6.f;

@@ -23,7 +23,7 @@ class SvgfDenoiser final : public Denoiser {
       : params_(params), mode_(config.mode), backend_(config) {
     params_.validate();
     backend_.set_method_planes(2 * (3 + 2 + 1 + 4) + 3 + 4 + (mode_ == Mode::Fast ? 4 : 0) +
-                               (params_.taa ? 3 * 3 : 0));
+                               (gradient_mode() ? 1 : 0) + (params_.taa ? 3 * 3 : 0));
   }
 
   void denoise(const Frame& in, Image& out) override {
@@ -58,6 +58,10 @@ class SvgfDenoiser final : public Denoiser {
       b.remodulated = backend_.rgb(remodulated_);
       b.prev_taa = backend_.rgb(taa_history_[prev]);
       b.next_taa = backend_.rgb(taa_history_[next]);
+    }
+    if (gradient_mode()) {
+      b.strata = backend_.plane(strata_, 0);
+      if (has_gradient_samples(in)) b.gradient_samples = cur.gradient;
     }
 #if defined(__CUDACC__)
     if (mode_ == Mode::Fast) {
@@ -99,6 +103,31 @@ class SvgfDenoiser final : public Denoiser {
   }
 
  private:
+  bool gradient_mode() const { return params_.antilag == Antilag::Gradient; }
+
+  // A frame has gradient samples when it carries the group and at least one stratum holds one
+  // (the first frame and the frame after a cut have none); else the statistics anti-lag runs.
+  // Read on the host (the frame is there on every backend); a frame with samples stops at the
+  // first stratum's.
+  static bool has_gradient_samples(const Frame& f) {
+    if (f.gradient.empty()) return false;
+    const float* mask = f.gradient.plane(2);
+    const size_t n = f.gradient.pixel_count();
+    for (size_t i = 0; i < n; ++i)
+      if (mask[i] > 0.5f) return true;
+    return false;
+  }
+
+  // The stratum image's planes in whole planes of the frame's size (a stratum plane is a
+  // ninth of one, so one usually holds them all).
+  int stratum_buffer_planes() const {
+    const size_t pixels = static_cast<size_t>(backend_.width()) * backend_.height();
+    const size_t strata = static_cast<size_t>(strata_along(backend_.width())) *
+                          strata_along(backend_.height());
+    const size_t floats = kGradientStratumPlanes * strata;
+    return static_cast<int>((floats + pixels - 1) / pixels);
+  }
+
   void allocate() {
     try {
       for (int s = 0; s < 2; ++s) {
@@ -114,6 +143,8 @@ class SvgfDenoiser final : public Denoiser {
         backend_.allocate(remodulated_, 3, "remodulated color");
         for (auto& t : taa_history_) backend_.allocate(t, 3, "TAA history");
       }
+      if (gradient_mode())
+        backend_.allocate(strata_, stratum_buffer_planes(), "gradient strata");
     } catch (...) {
       release();  // nothing half-made stays; a later frame may try again
       throw;
@@ -133,6 +164,7 @@ class SvgfDenoiser final : public Denoiser {
     illumination_ = {};
     accumulated_ = {};
     packed_guides_ = {};
+    strata_ = {};
     backend_.release();
   }
 
@@ -142,7 +174,7 @@ class SvgfDenoiser final : public Denoiser {
   int slot_ = 0;  // history slot the next frame reads
   bool has_history_ = false;
   typename Backend::Buffer color_history_[2], moments_[2], history_[2];
-  typename Backend::Buffer illumination_, accumulated_, signal_[2], packed_guides_;
+  typename Backend::Buffer illumination_, accumulated_, signal_[2], packed_guides_, strata_;
   typename Backend::Buffer remodulated_, taa_history_[2];  // only with TAA
   FrameReport report_;
 };

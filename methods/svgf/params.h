@@ -10,6 +10,33 @@
 
 namespace svgf {
 
+// What shortens a history the frame contradicts (issue 12, item 3; docs/svgf.md: Anti-lag).
+enum class Antilag : int {
+  Off,         // nothing (the paper, Falcor)
+  Statistics,  // the history against this frame's neighbourhood statistics (reproject.h)
+  Gradient,    // A-SVGF: the temporal gradients of the frame's re-shaded samples (gradient.h);
+               // a frame without gradient samples falls back to Statistics
+};
+
+inline const char* to_string(Antilag a) {
+  switch (a) {
+    case Antilag::Off: return "off";
+    case Antilag::Statistics: return "statistics";
+    case Antilag::Gradient: return "gradient";
+  }
+  return "?";
+}
+
+// "off", "statistics" (alias "on", its name before the gradient mode existed), "gradient";
+// std::invalid_argument naming the choices.
+inline Antilag parse_antilag(const std::string& s) {
+  if (s == "off") return Antilag::Off;
+  if (s == "statistics" || s == "on") return Antilag::Statistics;
+  if (s == "gradient") return Antilag::Gradient;
+  throw std::invalid_argument("svgf: --antilag must be off, statistics (or on) or gradient, got '" +
+                              s + "'");
+}
+
 struct SvgfParams {
   // Demodulation: albedo below this is clamped, so black albedo does not divide by zero.
   float albedo_epsilon = 1e-3f;
@@ -30,7 +57,7 @@ struct SvgfParams {
   // antilag_high on. antilag_relative (of the luminance, at least antilag_floor) widens the
   // tolerance for the bias reprojection and filtering leave. 5x5 and 4..8 fire far less on
   // still pixels than 3x3 and 3..6 (docs/svgf.md: Anti-lag).
-  bool antilag = false;
+  Antilag antilag = Antilag::Off;
   int antilag_radius = 2;
   float antilag_low = 4.f;
   float antilag_high = 8.f;
@@ -43,6 +70,15 @@ struct SvgfParams {
   // its own pass there).
   bool taa = false;
   float taa_alpha = 0.1f;
+
+  // A-SVGF (Schied et al. 2018; methods/svgf/gradient.h, docs/svgf.md): the per-stratum
+  // temporal gradients are filtered by gradient_iterations a-trous steps of 3x3 taps, 1, 2, 4,
+  // ... strata apart (Schied's reference code: 3x3 box taps, 5 iterations; 3 reach 7 strata,
+  // 21 pixels), edge-stopped by mesh id, depth and normal at each stratum's sample with SVGF's
+  // own tolerances (phi_depth 1, phi_normal 128), then drive alpha' = (1 - lambda) alpha + lambda.
+  int gradient_iterations = 3;
+  float gradient_phi_depth = 1.f;
+  float gradient_phi_normal = 128.f;
 
   // Reprojection tap tests. A tap is kept when its mesh id matches, its world normals agree to
   // within reproject_normal_cos, and |z - z_prev| <= scale * fwidth(z) + relative * z.
@@ -110,6 +146,10 @@ struct SvgfParams {
       fail("--antilag-high must be finite and > --antilag-low (" + std::to_string(antilag_low) +
            "), got " + std::to_string(antilag_high));
     at_least(antilag_relative, 0.f, "--antilag-relative");
+    if (gradient_iterations < 0 || gradient_iterations > 8)
+      fail("--gradient-iterations must be in [0, 8], got " + std::to_string(gradient_iterations));
+    at_least(gradient_phi_depth, 0.f, "--gradient-phi-depth");
+    at_least(gradient_phi_normal, 0.f, "--gradient-phi-normal");
     if (!(std::isfinite(antilag_floor) && antilag_floor > 0.f))
       fail("antilag_floor must be finite and > 0, got " + std::to_string(antilag_floor));
     at_least(reproject_depth_gradient_scale, 0.f, "reproject_depth_gradient_scale");

@@ -14,6 +14,7 @@
 #include "methods/svgf/atrous.h"
 #include "methods/svgf/demodulate.h"
 #include "methods/svgf/flavors.h"
+#include "methods/svgf/gradient.h"
 #include "methods/svgf/params.h"
 #include "methods/svgf/remodulate.h"
 #include "methods/svgf/reproject.h"
@@ -47,6 +48,11 @@ struct SvgfFrameBuffers {
   // planes (filtered[k]), fast mode as packed pixels (packed[k]).
   float* signal[2] = {nullptr, nullptr};
   float* packed_guides = nullptr;  // fast mode: 4 floats a pixel (depth, normal)
+  // A-SVGF (methods/svgf/gradient.h): this frame's gradient samples (no planes: the frame has
+  // none, or the anti-lag mode does not read them) and kGradientStratumPlanes planes of the
+  // stratum image, strata_along(width) x strata_along(height) floats each.
+  GradientSampleView gradient_samples;
+  float* strata = nullptr;
   // Output: the denoised, remodulated color.
   RgbView output;
   // With TAA (p.taa): remodulation writes `remodulated`; TAA blends it with the previous TAA
@@ -56,6 +62,16 @@ struct SvgfFrameBuffers {
   RgbView next_taa;
 
   size_t pixels() const { return static_cast<size_t>(guides.width) * guides.height; }
+  size_t stratum_count() const {
+    return static_cast<size_t>(strata_along(guides.width)) * strata_along(guides.height);
+  }
+  float* stratum_plane(int k) const { return strata + static_cast<size_t>(k) * stratum_count(); }
+  // The gradient a-trous ping-pong, k = 0 or 1.
+  GradientPlanes<float> gradient_signal(int k) const {
+    return {stratum_plane(3 * k), stratum_plane(3 * k + 1), stratum_plane(3 * k + 2)};
+  }
+  float* stratum_guides() const { return stratum_plane(6); }
+  float* gradient_lambda() const { return stratum_plane(7); }
   IllumVarView filtered(int k) const {
     float* p = signal[k];
     const size_t n = pixels();
@@ -93,8 +109,65 @@ inline DemodulateKernel demodulate_kernel_for(const SvgfFrameBuffers& b, const S
                           b.emission,     b.illumination, p.albedo_epsilon};
 }
 
+// The stratum image's planes: two a-trous buffers of 3 (delta, normalizer, weight), the guide
+// offsets, lambda.
+inline constexpr int kGradientStratumPlanes = 8;
+
+// The gradient stages run this frame: A-SVGF asked for, the frame has samples (the denoiser
+// passes them only then) and a history to correct.
+inline bool runs_gradient_stages(const SvgfFrameBuffers& b, const SvgfParams& p,
+                                 bool has_history) {
+  return p.antilag == Antilag::Gradient && b.gradient_samples.present() && has_history;
+}
+
+inline GradientSamplesKernel gradient_samples_kernel_for(const SvgfFrameBuffers& b) {
+  GradientSamplesKernel k;
+  k.width = b.guides.width;
+  k.height = b.guides.height;
+  k.samples = b.gradient_samples;
+  k.out = b.gradient_signal(0);
+  k.strata_width = strata_along(b.guides.width);
+  k.guide_offset = b.stratum_guides();
+  return k;
+}
+
+inline GradientAtrousKernel gradient_atrous_kernel_for(const SvgfFrameBuffers& b,
+                                                       const SvgfParams& p, int in, int step) {
+  GradientAtrousKernel k;
+  k.guides = b.guides;
+  k.at = StratumGuides{b.guides.width, strata_along(b.guides.width), b.stratum_guides()};
+  k.strata_height = strata_along(b.guides.height);
+  k.in = b.gradient_signal(in);
+  k.out = b.gradient_signal(1 - in);
+  k.step = step;
+  k.phi_depth = p.gradient_phi_depth;
+  k.phi_normal = p.gradient_phi_normal;
+  k.depth_gradient_floor = p.depth_gradient_floor;
+  return k;
+}
+
+// A-SVGF's three stages (methods/svgf/gradient.h), exact arithmetic in every mode: the frame's
+// gradient samples -> lambda per stratum (b.gradient_lambda()), which the reprojection reads.
+template <class Engine>
+void run_gradient_stages(Engine& engine, const SvgfFrameBuffers& b, const SvgfParams& p) {
+  namespace stage = svgf_stage;
+  const int sw = strata_along(b.guides.width);
+  const int sh = strata_along(b.guides.height);
+  engine.run(stage::kGradient, gradient_samples_kernel_for(b), sw, sh);
+  int current = 0;
+  for (int it = 0; it < p.gradient_iterations; ++it) {
+    engine.run(stage::kGradientAtrous, gradient_atrous_kernel_for(b, p, current, 1 << it), sw,
+               sh);
+    current = 1 - current;
+  }
+  engine.run(stage::kGradientLambda,
+             GradientLambdaKernel{sw, b.gradient_signal(current), b.gradient_lambda()}, sw, sh);
+}
+
+// `gradient_lambda`: A-SVGF's lambda per stratum when the gradient stages ran this frame.
 inline ReprojectKernel reproject_kernel_for(const SvgfFrameBuffers& b, const SvgfParams& p,
-                                            bool has_history) {
+                                            bool has_history,
+                                            const float* gradient_lambda = nullptr) {
   ReprojectKernel k;
   k.guides = b.guides;
   k.prev_guides = b.prev_guides;
@@ -107,6 +180,7 @@ inline ReprojectKernel reproject_kernel_for(const SvgfFrameBuffers& b, const Svg
   k.prev_moment2 = b.prev_moment2;
   k.prev_history = b.prev_history;
   k.has_history = has_history;
+  k.gradient_lambda = gradient_lambda;
   k.accumulated = b.accumulated;
   k.moment1 = b.next_moment1;
   k.moment2 = b.next_moment2;
@@ -128,18 +202,24 @@ void run_svgf_frame(Engine& engine, const SvgfFrameBuffers& b, const SvgfParams&
   const RemodulateSink remodulate{b.albedo, b.emission, p.taa ? b.remodulated : b.output,
                                   p.albedo_epsilon};
 
+  // 0. A-SVGF: the temporal gradients of the frame's re-shaded samples -> lambda per stratum.
+  //    Without samples the reprojection falls back to the statistics anti-lag.
+  const bool gradient = runs_gradient_stages(b, p, has_history);
+  if (gradient) run_gradient_stages(engine, b, p);
+  const float* lambda = gradient ? b.gradient_lambda() : nullptr;
+
   // 1. (color - emission) / albedo -> illumination (the inputs are sanitized already).
   // 2. illumination + history -> accumulated color, moments and history length.
   //    Fused, the same thread reprojects the illumination it just wrote, and packs the guides.
   if constexpr (Flavor::kFused) {
     engine.run(stage::kDemodulate,
                then(demodulate_kernel_for(b, p),
-                    then(reproject_kernel_for(b, p, has_history),
+                    then(reproject_kernel_for(b, p, has_history, lambda),
                          PackGuidesKernel{b.guides, reinterpret_cast<Packed4*>(b.packed_guides)})),
                w, h);
   } else {
     engine.run(stage::kDemodulate, demodulate_kernel_for(b, p), w, h);
-    engine.run(stage::kReproject, reproject_kernel_for(b, p, has_history), w, h);
+    engine.run(stage::kReproject, reproject_kernel_for(b, p, has_history, lambda), w, h);
   }
   const auto guides = filter_guides(flavor, b);
 

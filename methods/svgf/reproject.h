@@ -4,15 +4,18 @@
 // moments history through the 2x2 bilinear taps that pass the consistency tests (same mesh,
 // similar depth and normal), falls back to the consistent pixels of the 3x3 neighbourhood, and
 // blends the new sample in with alpha = max(alpha_min, 1 / history). No consistent tap: the
-// history restarts at length 1 (disocclusion).
+// history restarts at length 1 (disocclusion). An anti-lag (params.antilag) shortens a history
+// the frame contradicts: the neighbourhood statistics below, or A-SVGF's lambda of the pixel's
+// stratum (methods/svgf/gradient.h), alpha' = (1 - lambda) alpha + lambda.
 #include <cmath>
 
 #include "core/arith.h"
 #include "core/bilinear_taps.h"
 #include "core/hd.h"
 #include "core/modulation.h"
-#include "methods/svgf/params.h"
 #include "core/views.h"
+#include "methods/svgf/gradient.h"
+#include "methods/svgf/params.h"
 
 namespace svgf {
 
@@ -31,6 +34,9 @@ struct ReprojectKernel {
   const float* prev_moment2 = nullptr;  // E[l^2]
   const float* prev_history = nullptr;  // frames accumulated (1 .. history_cap)
   bool has_history = false;   // false on the first frame and after reset()
+  // A-SVGF's lambda per stratum (strata_along(width) a row), when the gradient stages ran this
+  // frame; none: the statistics anti-lag stands in for it where params.antilag asks for one.
+  const float* gradient_lambda = nullptr;
   // Outputs.
   IllumVarView accumulated;   // blended color and the temporal variance E[l^2] - E[l]^2
   float* moment1 = nullptr;
@@ -146,7 +152,9 @@ struct ReprojectKernel {
 
   // The share of the history the anti-lag drops: 0 up to antilag_low, 1 from antilag_high.
   SVGF_HD float antilag_drop(int x, int y, int i, float l, const History& h) const {
-    if (!params.antilag) return 0.f;
+    const bool statistics = params.antilag == Antilag::Statistics ||
+                            (params.antilag == Antilag::Gradient && !gradient_lambda);
+    if (!statistics) return 0.f;
     const float d = history_discrepancy(x, y, i, l, h);
     if (!(d > params.antilag_low)) return 0.f;
     return min_f(1.f, (d - params.antilag_low) / (params.antilag_high - params.antilag_low));
@@ -164,11 +172,23 @@ struct ReprojectKernel {
       h.length = h.length * (1.f - drop);
       if (!(h.length > 0.f)) h = History();  // nothing of it, not even in rounding
     }
-    const float length =
-        h.valid ? min_f(h.length + 1.f, static_cast<float>(params.history_cap)) : 1.f;
+    // A-SVGF: the stratum's share of change; all of it, and the pixel restarts.
+    const float lambda = h.valid && gradient_lambda
+                             ? gradient_lambda[(y / kGradientStratum) * strata_along(guides.width) +
+                                               x / kGradientStratum]
+                             : 0.f;
+    if (!(lambda < 1.f)) h = History();
+    float length = h.valid ? min_f(h.length + 1.f, static_cast<float>(params.history_cap)) : 1.f;
     // With history h, alpha = 1/h makes the first frames an equal-weight mean.
-    const float alpha = h.valid ? max_f(params.alpha, 1.f / length) : 1.f;
-    const float alpha_m = h.valid ? max_f(params.moments_alpha, 1.f / length) : 1.f;
+    float alpha = h.valid ? max_f(params.alpha, 1.f / length) : 1.f;
+    float alpha_m = h.valid ? max_f(params.moments_alpha, 1.f / length) : 1.f;
+    if (h.valid && lambda > 0.f) {
+      alpha = antilag_alpha(alpha, lambda);
+      alpha_m = antilag_alpha(alpha_m, lambda);
+      // The history now counts for 1 / alpha' frames, so the next frames go on from there
+      // (Schied's reference code).
+      length = min_f(length, 1.f / alpha);
+    }
     const Vec3 color = h.color + (c - h.color) * alpha;
     const float m1 = h.moments.x + (l - h.moments.x) * alpha_m;
     const float m2 = h.moments.y + (l * l - h.moments.y) * alpha_m;

@@ -7,6 +7,10 @@
 
 namespace svgf::svgf_stage {
 
+// A-SVGF (--antilag gradient, on frames with gradient samples), before the reprojection.
+inline constexpr const char* kGradient = "gradient";                // samples per stratum
+inline constexpr const char* kGradientAtrous = "gradient_atrous";   // all iterations together
+inline constexpr const char* kGradientLambda = "gradient_lambda";
 inline constexpr const char* kDemodulate = "demodulate";  // fast mode: + reproject, one launch
 inline constexpr const char* kReproject = "reproject";
 inline constexpr const char* kVariance = "variance";
@@ -16,8 +20,9 @@ inline constexpr const char* kRemodulate = "remodulate";  // fast mode: in the l
 inline constexpr const char* kTaa = "taa";                // only with --svgf-taa on
 
 inline std::vector<std::string> all(bool taa) {
-  std::vector<std::string> v = {kSanitizeStage, kDemodulate, kReproject, kVariance,
-                                kAtrous,        kFeedback,   kRemodulate};
+  std::vector<std::string> v = {kSanitizeStage, kGradient, kGradientAtrous, kGradientLambda,
+                                kDemodulate,    kReproject, kVariance,     kAtrous,
+                                kFeedback,      kRemodulate};
   if (taa) v.push_back(kTaa);
   return v;
 }

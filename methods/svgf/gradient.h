@@ -1,0 +1,177 @@
+#pragma once
+// A-SVGF's temporal gradients (Schied, Peters, Dachsbacher 2018, "Gradient Estimation for
+// Real-Time Adaptive Temporal Filtering"): the renderer re-shades one sample of the previous
+// frame per 3x3 stratum at this frame with the same random numbers (Frame::gradient), so the
+// difference of the two luminances is the change of the signal, without noise where nothing
+// changed. Three stages over the stratum image (ceil(w/3) x ceil(h/3)), all in exact arithmetic
+// in every mode (they feed the history decisions, as the reprojection does):
+//   1. GradientSamplesKernel  per stratum: delta = current - previous, normalizer =
+//                             max(current, previous) (the paper's Delta), weight 1; no sample
+//                             (or one that is not radiance): 0, 0 and weight 0;
+//   2. GradientAtrousKernel   a-trous steps of 3x3 taps (Schied's reference code: box taps),
+//                             edge-stopped by mesh id, depth and normal at the strata's guide
+//                             pixels; strata without data weigh 0;
+//   3. GradientLambdaKernel   lambda = min(1, |delta| / normalizer) (0 where the normalizer is
+//                             0), which the reprojection turns into alpha' = (1 - lambda) alpha
+//                             + lambda (the paper's Eq. 15; methods/svgf/reproject.h).
+#include <cstdint>
+#include <type_traits>
+
+#include "core/arith.h"
+#include "core/frame.h"
+#include "core/frame_inputs.h"
+#include "core/hd.h"
+#include "core/normal_weight.h"
+#include "core/sanitize.h"
+#include "core/views.h"
+#include "methods/svgf/edge_stopping.h"
+
+namespace svgf {
+
+// Strata along an axis of `pixels` (the last one partial).
+SVGF_HD int strata_along(int pixels) {
+  return (pixels + kGradientStratum - 1) / kGradientStratum;
+}
+
+// The filtered quantities of a stratum image, one plane each (T: float or const float).
+template <class T>
+struct GradientPlanes {
+  T* delta = nullptr;       // current - previous luminance
+  T* normalizer = nullptr;  // max(current, previous)
+  T* weight = nullptr;      // 1: the stratum has data, 0: none
+  GradientPlanes() = default;
+  SVGF_HD GradientPlanes(T* d, T* n, T* w) : delta(d), normalizer(n), weight(w) {}
+  template <class U, class = std::enable_if_t<std::is_same<const U, T>::value &&
+                                              !std::is_same<U, T>::value>>
+  SVGF_HD GradientPlanes(const GradientPlanes<U>& o)
+      : delta(o.delta), normalizer(o.normalizer), weight(o.weight) {}
+};
+
+// Where a stratum's guides are read: the pixel of its sample, or its centre (clamped into a
+// partial stratum) when it has none. Stored per stratum as the offset k = dy * 3 + dx in the
+// stratum (0 .. 8, exact in a float plane).
+struct StratumGuides {
+  int width = 0;               // frame width, pixels
+  int strata_width = 0;
+  const float* offset = nullptr;
+  SVGF_HD int pixel(int sx, int sy) const {
+    const int k = static_cast<int>(offset[sy * strata_width + sx]);
+    return (sy * kGradientStratum + k / kGradientStratum) * width + sx * kGradientStratum +
+           k % kGradientStratum;
+  }
+};
+
+// Stage 1, per stratum (sx, sy): its sample (the first masked pixel in raster order; the
+// contract has one) -> delta, normalizer, weight and the guide offset.
+struct GradientSamplesKernel {
+  int width = 0, height = 0;  // frame, pixels
+  GradientSampleView samples;
+  GradientPlanes<float> out;
+  int strata_width = 0;
+  float* guide_offset = nullptr;
+
+  SVGF_HD void operator()(int sx, int sy) const {
+    const int x0 = sx * kGradientStratum, y0 = sy * kGradientStratum;
+    const int xc = min_i(x0 + 1, width - 1), yc = min_i(y0 + 1, height - 1);
+    int guide = (yc - y0) * kGradientStratum + (xc - x0);
+    float delta = 0.f, normalizer = 0.f, weight = 0.f;
+    for (int k = 0; k < kGradientStratum * kGradientStratum; ++k) {
+      const int x = x0 + k % kGradientStratum, y = y0 + k / kGradientStratum;
+      if (x >= width || y >= height) continue;
+      const int i = y * width + x;
+      if (!(samples.mask[i] > 0.5f)) continue;
+      guide = k;
+      const float previous = samples.previous[i], current = samples.current[i];
+      if (radiance_ok(previous) && radiance_ok(current)) {  // NaN, Inf, negative: no data
+        delta = current - previous;
+        normalizer = max_f(current, previous);
+        weight = 1.f;
+      }
+      break;
+    }
+    const int s = sy * strata_width + sx;
+    out.delta[s] = delta;
+    out.normalizer[s] = normalizer;
+    out.weight[s] = weight;
+    guide_offset[s] = static_cast<float>(guide);
+  }
+
+ private:
+  SVGF_HD static int min_i(int a, int b) { return a < b ? a : b; }
+};
+
+// Stage 2: one a-trous step over the stratum image, taps `step` strata apart in raster order.
+// A tap weighs exp(-|z_p - z_q| / (phi_depth * fwidth(z_p) * distance in pixels)) *
+// max(0, n_p . n_q)^phi_normal (SVGF's edge_stopping_weight without its luminance term), 0 on
+// another mesh or without data; the centre, with data, weighs 1. A stratum with no data in
+// reach stays without.
+struct GradientAtrousKernel {
+  GuideView guides;  // this frame's, pixels
+  StratumGuides at;
+  int strata_height = 0;
+  GradientPlanes<const float> in;
+  GradientPlanes<float> out;
+  int step = 1;
+  float phi_depth = 1.f;
+  float phi_normal = 128.f;
+  float depth_gradient_floor = 1e-8f;
+
+  SVGF_HD void operator()(int sx, int sy) const {
+    const int s = sy * at.strata_width + sx;
+    const int p = at.pixel(sx, sy);
+    const EdgeSample c{guides.depth[p], guides.normal.load(p), 0.f};
+    const uint32_t mesh = guides.mesh_id[p];
+    const float inv_phi_z =
+        inv_depth_tolerance<ExactArith>(phi_depth, guides.depth_fwidth(p), depth_gradient_floor);
+    const NormalPower<ExactArith> power = NormalPower<ExactArith>::of(phi_normal);
+    float weight_sum = 0.f, delta = 0.f, normalizer = 0.f;
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int qx = sx + dx * step, qy = sy + dy * step;
+        if (qx < 0 || qy < 0 || qx >= at.strata_width || qy >= strata_height) continue;
+        const int q = qy * at.strata_width + qx;
+        if (!(in.weight[q] > 0.f)) continue;
+        float w = 1.f;
+        if (dx != 0 || dy != 0) {
+          const int pq = at.pixel(qx, qy);
+          if (guides.mesh_id[pq] != mesh) continue;
+          const EdgeSample e{guides.depth[pq], guides.normal.load(pq), 0.f};
+          const float scale =
+              ExactArith::tap_depth_scale(inv_phi_z, dx, dy, step * kGradientStratum);
+          w = edge_stopping_weight<ExactArith>(c, e, scale, power, 0.f);
+        }
+        weight_sum = weight_sum + w;
+        delta = delta + in.delta[q] * w;
+        normalizer = normalizer + in.normalizer[q] * w;
+      }
+    }
+    const bool any = weight_sum > 0.f;
+    out.delta[s] = any ? delta / weight_sum : 0.f;
+    out.normalizer[s] = any ? normalizer / weight_sum : 0.f;
+    out.weight[s] = any ? 1.f : 0.f;
+  }
+};
+
+// lambda of a filtered stratum: min(1, |delta| / normalizer), 0 without a normalizer.
+SVGF_HD float gradient_lambda(float delta, float normalizer) {
+  return normalizer > 0.f ? min_f(1.f, abs_f(delta) / normalizer) : 0.f;
+}
+
+// Stage 3, per stratum.
+struct GradientLambdaKernel {
+  int strata_width = 0;
+  GradientPlanes<const float> in;
+  float* lambda = nullptr;
+  SVGF_HD void operator()(int sx, int sy) const {
+    const int s = sy * strata_width + sx;
+    lambda[s] = in.weight[s] > 0.f ? gradient_lambda(in.delta[s], in.normalizer[s]) : 0.f;
+  }
+};
+
+// The history's blend factor under a gradient's lambda (the paper's Eq. 15), in the written
+// order; at most 1.
+SVGF_HD float antilag_alpha(float alpha, float lambda) {
+  return min_f(1.f, (1.f - lambda) * alpha + lambda);
+}
+
+}  // namespace svgf
