@@ -31,6 +31,10 @@ std::string params_key(const DenoiserConfig& d) {
       unless_default("cap", static_cast<float>(p.history_cap), static_cast<float>(def.history_cap));
       if (p.variance_of_mean != def.variance_of_mean) s << (p.variance_of_mean ? " vom" : " novom");
       if (p.antilag) s << " antilag" << p.antilag_low << '-' << p.antilag_high << '/' << p.antilag_relative;
+      if (p.split != def.split) s << " split-" << to_string(p.split);
+      unless_default("iit", static_cast<float>(p.indirect_iterations),
+                     static_cast<float>(def.indirect_iterations));
+      unless_default("ipc", p.indirect_phi_color, def.indirect_phi_color);
       break;
     }
     case Method::Wavelet: {
@@ -88,7 +92,9 @@ json params_json(const DenoiserConfig& d) {
               {"phi_depth", p.phi_depth},   {"history_cap", p.history_cap},
               {"variance_of_mean", p.variance_of_mean}, {"antilag", p.antilag},
               {"antilag_low", p.antilag_low}, {"antilag_high", p.antilag_high},
-              {"antilag_relative", p.antilag_relative}};
+              {"antilag_relative", p.antilag_relative}, {"split", to_string(p.split)},
+              {"indirect_iterations", p.indirect_iterations},
+              {"indirect_phi_color", p.indirect_phi_color}};
     }
     case Method::Wavelet: {
       const WaveletParams& p = d.wavelet;

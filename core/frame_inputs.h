@@ -12,6 +12,10 @@ struct FrameInputs {
   ConstRgbView albedo;
   ConstRgbView emission;  // no planes when the frame has no emission channel
   ConstRgbView position;  // world positions, for methods that ask for them (else no planes)
+  // The split of color (direct + indirect), for methods that ask for it and frames that carry
+  // both (else no planes).
+  ConstRgbView direct;
+  ConstRgbView indirect;
 };
 
 }  // namespace svgf

@@ -17,6 +17,7 @@
 #include "methods/svgf/remodulate.h"
 #include "methods/svgf/reproject.h"
 #include "methods/svgf/sinks.h"
+#include "methods/svgf/split_sum.h"
 #include "methods/svgf/stages.h"
 #include "methods/svgf/variance.h"
 
@@ -183,6 +184,22 @@ void run_svgf_frame(Engine& engine, const SvgfFrameBuffers& b, const SvgfParams&
                  ForwardKernel<ConstSignal, RemodulateSink>{w, signal(current), remodulate}, w,
                  h);
   });
+}
+
+// A frame whose color is split into direct and indirect (issue 12, item 2; docs/svgf.md: Direct
+// and indirect): each signal runs the frame above with its own history, moments and variance,
+// and so its own edge-stopping; `direct` holds the emission and writes the frame's output,
+// `indirect` (no emission, its own output buffer) is filtered with p.indirect(); then the two
+// are added. The signals share the scratch buffers, one after the other.
+template <class Flavor = SvgfExact, class Engine>
+void run_svgf_split_frame(Engine& engine, const SvgfFrameBuffers& direct,
+                          const SvgfFrameBuffers& indirect, const SvgfParams& p,
+                          bool has_history) {
+  run_svgf_frame<Flavor>(engine, direct, p, has_history);
+  run_svgf_frame<Flavor>(engine, indirect, p.indirect(), has_history);
+  const int w = direct.guides.width;
+  engine.run(svgf_stage::kSplitSum, SplitSumKernel{w, indirect.output, direct.output}, w,
+             direct.guides.height);
 }
 
 }  // namespace svgf

@@ -13,9 +13,12 @@ inline constexpr const char* kVariance = "variance";
 inline constexpr const char* kAtrous = "atrous";          // all iterations together
 inline constexpr const char* kFeedback = "feedback";      // copy of the feedback tap
 inline constexpr const char* kRemodulate = "remodulate";  // fast mode: in the last iteration
+inline constexpr const char* kSplitSum = "split_sum";     // direct + indirect (split frames)
 
+// A split frame runs every stage once per signal (the times add) and then kSplitSum.
 inline std::vector<std::string> all() {
-  return {kSanitizeStage, kDemodulate, kReproject, kVariance, kAtrous, kFeedback, kRemodulate};
+  return {kSanitizeStage, kDemodulate, kReproject, kVariance, kAtrous, kFeedback, kRemodulate,
+          kSplitSum};
 }
 
 }  // namespace svgf::svgf_stage
