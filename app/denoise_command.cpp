@@ -81,15 +81,34 @@ void write_preview(const std::string& path, const Frame& in, const Image& out, f
   io::write_png_rgb8(path, strip.data(), w * panels, h);
 }
 
+// SVGF filtering direct and indirect apart reads both in a frame that has either, and needs
+// them in every frame with --svgf-split on: an IoError naming the file otherwise (the denoiser
+// refuses the same frames, methods/svgf/denoiser.h).
+void check_split_channels(const io::FrameHeader& h, const std::string& path, SplitMode split) {
+  if (split == SplitMode::Off) return;
+  if (h.has_direct != h.has_indirect)
+    throw io::IoError(path + ": channel '" + (h.has_direct ? "direct" : "indirect") +
+                      "' without '" + (h.has_direct ? "indirect" : "direct") +
+                      "': filtering them apart (--svgf-split) needs both");
+  if (split == SplitMode::On && !h.has_direct)
+    throw io::IoError(path + ": --svgf-split on needs the channels 'direct' and 'indirect', "
+                      "and the frame has neither");
+}
+
 // Everything that can be checked before the output exists, so that bad input never leaves a
 // half-written output: every frame's header (size against the manifest, channels; no pixels
 // read), the numbering (all frames: the order needs every number), then the SHA-256 of each
 // frame to be read. Returns the first `limit` frames in the order of their numbers.
-std::vector<PlannedFrame> validate_sequence(const io::Sequence& sequence, int limit, bool verify) {
+// `split`: SVGF's --svgf-split, whose needs each header must meet (docs/svgf.md: Direct and
+// indirect).
+std::vector<PlannedFrame> validate_sequence(const io::Sequence& sequence, int limit, bool verify,
+                                            SplitMode split) {
   std::vector<FrameInput> inputs;
   for (int k = 0; k < sequence.size(); ++k) {
     throw_if_interrupted();
-    inputs.push_back({sequence.path(k), sequence.read_header(k).index});
+    const io::FrameHeader header = sequence.read_header(k);
+    check_split_channels(header, sequence.path(k), split);
+    inputs.push_back({sequence.path(k), header.index});
   }
   std::vector<PlannedFrame> plan =
       plan_frames(inputs, sequence.manifest().camera_cuts,
@@ -106,6 +125,7 @@ std::vector<PlannedFrame> validate_sequence(const io::Sequence& sequence, int li
 // What a run needs once its arguments are accepted.
 struct RunSettings {
   std::string in_dir, out_dir;
+  SplitMode split = SplitMode::Off;  // SVGF's, Off for the other methods
   int frame_limit = 0;
   bool verify = true, previews = true;
   float exposure = 1.f;
@@ -118,7 +138,8 @@ void run(const RunSettings& s, Denoiser& denoiser, RunProgress& progress) {
   progress.stage = "reading the manifest";
   const io::Sequence sequence(s.in_dir);
   progress.stage = "validating the input";
-  const std::vector<PlannedFrame> plan = validate_sequence(sequence, s.frame_limit, s.verify);
+  const std::vector<PlannedFrame> plan =
+      validate_sequence(sequence, s.frame_limit, s.verify, s.split);
 
   progress.stage = "making the staging folder";
   io::StagedFolder staged(s.out_dir, kReportJson);
@@ -204,6 +225,7 @@ int run_denoise(const DenoiseArgs& a) {
     throw UsageError(e.what());
   }
   settings.requested_backend = config.backend;
+  if (config.method == Method::Svgf) settings.split = config.svgf.split;
   settings.exposure = a.exposure;
   settings.previews = !a.no_preview;
   settings.verify = !a.no_verify;

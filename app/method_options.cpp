@@ -95,6 +95,16 @@ void MethodParamFlags::add_to(CLI::App& app) {
        [](DenoiserConfig& c, float v) { c.svgf.gradient_phi_depth = v; })->check(cli::NotNaN);
   flag("gradient-phi-normal", "X", svgf, "... their normal exponent (default 128)",
        [](DenoiserConfig& c, float v) { c.svgf.gradient_phi_normal = v; })->check(cli::NotNaN);
+  const CLI::Validator split = cli::accepted_by([](const std::string& s) { parse_split_mode(s); });
+  flag("svgf-split", "auto|off|on", svgf,
+       "filter direct and indirect apart, auto = when the frame carries both (default auto)",
+       [](DenoiserConfig& c, const std::string& v) { c.svgf.split = parse_split_mode(v); })
+      ->check(split);
+  flag("indirect-iterations", "N", svgf, "... indirect's a-trous iterations, -1 = --iterations (default -1)",
+       [](DenoiserConfig& c, int v) { c.svgf.indirect_iterations = v; })
+      ->check(CLI::Range(-1, 12));
+  flag("indirect-phi-color", "X", svgf, "... indirect's luminance edge-stopping, -1 = --phi-color (default -1)",
+       [](DenoiserConfig& c, float v) { c.svgf.indirect_phi_color = v; })->check(cli::NotNaN);
   flag("phi-normal", "X", svgf, "normal edge-stopping exponent (default 128)",
        [](DenoiserConfig& c, float v) { c.svgf.phi_normal = v; })->check(cli::NotNaN);
   flag("phi-depth", "X", svgf, "depth edge-stopping, 0 = no depth term (default 1)",

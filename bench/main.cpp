@@ -118,13 +118,16 @@ int run_command(const RunArgs& a) {
   if (!c.project() && c.denoiser.backend != Backend::Cpu)
     throw UsageError("the OpenCV baselines run on the CPU only");
 
+  // Direct and indirect only for the run that asks to filter them apart.
+  const bool split = c.project() && c.denoiser.method == Method::Svgf &&
+                     c.denoiser.svgf.split == SplitMode::On;
   FrameSet frames;
   if (!a.fixture.empty()) {
-    frames = load_fixture(a.fixture);
+    frames = load_fixture(a.fixture, 0, split);
   } else {
     int w = 0, h = 0;
     parse_size(a.size, w, h);
-    frames = generate_frames(a.scene, w, h, a.distinct_frames, a.cache);
+    frames = generate_frames(a.scene, w, h, a.distinct_frames, a.cache, split);
   }
 
   json doc;

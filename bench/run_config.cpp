@@ -39,6 +39,10 @@ std::string params_key(const DenoiserConfig& d) {
       if (p.antilag != Antilag::Off)
         s << " antilag" << p.antilag_low << '-' << p.antilag_high << '/' << p.antilag_relative;
       if (p.taa) s << " taa" << p.taa_alpha;
+      if (p.split != def.split) s << " split-" << to_string(p.split);
+      unless_default("iit", static_cast<float>(p.indirect_iterations),
+                     static_cast<float>(def.indirect_iterations));
+      unless_default("ipc", p.indirect_phi_color, def.indirect_phi_color);
       break;
     }
     case Method::Wavelet: {
@@ -100,7 +104,10 @@ json params_json(const DenoiserConfig& d) {
               {"gradient_iterations", p.gradient_iterations},
               {"gradient_phi_depth", p.gradient_phi_depth},
               {"gradient_phi_normal", p.gradient_phi_normal},
-              {"taa", p.taa}, {"taa_alpha", p.taa_alpha}};
+              {"taa", p.taa}, {"taa_alpha", p.taa_alpha},
+              {"split", to_string(p.split)},
+              {"indirect_iterations", p.indirect_iterations},
+              {"indirect_phi_color", p.indirect_phi_color}};
     }
     case Method::Wavelet: {
       const WaveletParams& p = d.wavelet;

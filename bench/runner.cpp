@@ -42,7 +42,13 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
   const bool project = c.project(), cuda = c.cuda();
   // Bytes and operations are counted for every SVGF and BMFR stage and for the other methods'
   // filter stages (bench/stage_cost.h); a frame floor needs them all.
-  const bool frame_costed = project && frame_is_costed(c.denoiser.method);
+  // SVGF filtering direct and indirect apart runs every stage twice; the cost model counts one
+  // signal, so such a run has none.
+  const bool split = project && c.denoiser.method == Method::Svgf &&
+                     c.denoiser.svgf.split != SplitMode::Off && !fs.frames.front().direct.empty() &&
+                     !fs.frames.front().indirect.empty();
+  const bool costed = project && !split;
+  const bool frame_costed = costed && frame_is_costed(c.denoiser.method);
   const double pixels = static_cast<double>(fs.width) * fs.height;
   const bool emission = !fs.frames.front().emission.empty();
   const double surface = fs.surface_fraction();
@@ -137,7 +143,7 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
     const std::string& name = stage_names[si];
     const Summary st = summarize(stage_ms[si]);
     const std::optional<StageCost> counted =
-        project ? method_stage_cost(c.denoiser, name, emission, surface, fs.width, fs.height)
+        costed ? method_stage_cost(c.denoiser, name, emission, surface, fs.width, fs.height)
                 : std::nullopt;
     const StageCost cost = counted.value_or(StageCost{});
     if (st.max <= 0 && cost.bytes() <= 0) continue;  // not run by this backend/mode

@@ -65,15 +65,17 @@ void parse_size(const std::string& text, int& width, int& height) {
 
 namespace {
 
-// Optional channels no method reads (emission and position some do): dropped to save memory.
-void drop_unused(Frame& f) {
+// Optional channels no method reads unless asked (emission and position some do): dropped to
+// save memory.
+void drop_unused(Frame& f, bool split) {
+  if (split) return;
   f.direct = Image();
   f.indirect = Image();
 }
 
 }  // namespace
 
-FrameSet load_fixture(const std::string& dir, int max_frames) {
+FrameSet load_fixture(const std::string& dir, int max_frames, bool split) {
   const io::Sequence seq(dir);
   FrameSet s;
   s.source = "fixture";
@@ -83,7 +85,7 @@ FrameSet load_fixture(const std::string& dir, int max_frames) {
   const int n = max_frames > 0 ? std::min(max_frames, seq.size()) : seq.size();
   for (int k = 0; k < n; ++k) {
     Frame f = seq.read(k);
-    drop_unused(f);
+    drop_unused(f, split);
     s.frames.push_back(std::move(f));
     if (seq.is_camera_cut(k)) s.cuts.push_back(k);
   }
@@ -103,7 +105,7 @@ bool renderer_available() {
 }
 
 FrameSet generate_frames(const std::string& scene, int width, int height, int count,
-                         const std::string& cache_dir) {
+                         const std::string& cache_dir, bool split) {
   FrameSet s;
   s.scene = scene;
   s.width = width;
@@ -116,7 +118,7 @@ FrameSet generate_frames(const std::string& scene, int width, int height, int co
   settings.height = height;
   settings.spp = 1;
   settings.reference_spp = 0;
-  settings.split = false;
+  settings.split = split;
   gbuffer::validate(settings);
   std::unique_ptr<gbuffer::Renderer> renderer;  // made only when a frame is not cached
   double render_s = 0;
@@ -127,13 +129,14 @@ FrameSet generate_frames(const std::string& scene, int width, int height, int co
       fs::create_directories(cache_dir);
       path = (fs::path(cache_dir) /
               (scene + "_" + std::to_string(width) + "x" + std::to_string(height) + "_frame" +
-               std::to_string(k) + "_gen" + std::to_string(gbuffer::kGeneratorVersion) + ".exr"))
+               std::to_string(k) + "_gen" + std::to_string(gbuffer::kGeneratorVersion) +
+               (split ? "_split" : "") + ".exr"))
                  .string();
       if (fs::exists(path)) {
         Frame f = io::read_frame(path);
         // Older caches were written without the world positions the JBF reads: render again.
         if (!f.position.empty()) {
-          drop_unused(f);
+          drop_unused(f, split);
           s.frames.push_back(std::move(f));
           continue;
         }
@@ -144,7 +147,7 @@ FrameSet generate_frames(const std::string& scene, int width, int height, int co
     Frame f = renderer->render(desc, k, settings);
     render_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     ++rendered;
-    drop_unused(f);
+    drop_unused(f, split);
     if (!path.empty()) io::write_frame(path, f);
     s.frames.push_back(std::move(f));
   }
@@ -165,7 +168,7 @@ FrameSet generate_frames(const std::string& scene, int width, int height, int co
   for (int k = 0; k < count; ++k) {
     Frame f = syn.frame(k);
     f.reference = Image();
-    drop_unused(f);
+    drop_unused(f, split);
     s.frames.push_back(std::move(f));
   }
   s.source = "synthetic";

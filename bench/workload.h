@@ -25,15 +25,17 @@ struct FrameSet {
 // "720p", "1080p", "4k", "256" (square) or "WxH".
 void parse_size(const std::string& text, int& width, int& height);
 
-// Reads a fixture folder (manifest.json + frame_NNNN.exr); max_frames <= 0: all.
-FrameSet load_fixture(const std::string& dir, int max_frames = 0);
+// Reads a fixture folder (manifest.json + frame_NNNN.exr); max_frames <= 0: all. The direct and
+// indirect channels are dropped unless `split` (only SVGF's --svgf-split on reads them).
+FrameSet load_fixture(const std::string& dir, int max_frames = 0, bool split = false);
 
-// `count` distinct frames 0..count-1 of `scene` at width x height, 1 spp, no reference.
+// `count` distinct frames 0..count-1 of `scene` at width x height, 1 spp, no reference; `split`:
+// with the direct and indirect channels (cached apart).
 // With the renderer (svgf_gbuffer linked), frames come from the cache folder when present there,
 // else are rendered and stored (cache_dir empty: no cache). Without it, a synthetic moving scene
 // (tests/synthetic_sequence.h) stands in, and `source` says so.
 FrameSet generate_frames(const std::string& scene, int width, int height, int count,
-                         const std::string& cache_dir);
+                         const std::string& cache_dir, bool split = false);
 
 // Whether this build can render (svgf_gbuffer was linked).
 bool renderer_available();

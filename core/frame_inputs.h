@@ -24,6 +24,10 @@ struct FrameInputs {
   ConstRgbView emission;  // no planes when the frame has no emission channel
   ConstRgbView position;  // world positions, for methods that ask for them (else no planes)
   GradientSampleView gradient;  // no planes when the frame has no gradient samples
+  // The split of color (direct + indirect), for methods that ask for it and frames that carry
+  // both (else no planes).
+  ConstRgbView direct;
+  ConstRgbView indirect;
 };
 
 }  // namespace svgf

@@ -32,6 +32,7 @@ inline constexpr float kMaxNormalLength2 = 1.21f;
 // (FrameReport::repairs).
 enum InputRepair : uint32_t {
   kRepairColor = 1u << 0,     // a color component NaN, Inf, negative or > kMaxRadiance: set to 0
+                              // (also one of direct or indirect, the split of color)
   kRepairAlbedo = 1u << 1,    // an albedo component outside [0, 1]: clamped (NaN: 1)
   kRepairEmission = 1u << 2,  // as color, for emission
   kRepairNormal = 1u << 3,    // a surface normal of the wrong length: renormalized
@@ -144,6 +145,7 @@ SVGF_HD uint32_t sanitize_pixel(InputPixel& p, bool has_emission, bool has_posit
 // (emission, position) are absent when `in` has none. Returns the InputRepair bits.
 struct InputPlanes {
   ConstRgbView color, albedo, emission, normal, position;
+  ConstRgbView direct, indirect;  // optional, both or neither: the split of color
   const float* depth = nullptr;
   const float* depth_dx = nullptr;
   const float* depth_dy = nullptr;
@@ -152,6 +154,7 @@ struct InputPlanes {
 };
 struct InputPlanesOut {
   RgbView color, albedo, emission, normal, position;
+  RgbView direct, indirect;
   float* depth = nullptr;
   float* depth_dx = nullptr;
   float* depth_dy = nullptr;
@@ -179,8 +182,20 @@ struct SanitizeInputs {
     p.depth_dy = in.depth_dy[i];
     p.motion_x = in.motion_x[i];
     p.motion_y = in.motion_y[i];
-    const uint32_t repairs = sanitize_pixel(p, has_emission, has_position);
+    uint32_t repairs = sanitize_pixel(p, has_emission, has_position);
+    // The split of color follows color's rule, counted as color.
+    bool split_bad = false;
+    Vec3 direct, indirect;
+    if (in.direct.r != nullptr) {
+      direct = sanitize_radiance(in.direct.load(i), split_bad);
+      indirect = sanitize_radiance(in.indirect.load(i), split_bad);
+      if (split_bad) repairs |= kRepairColor;
+    }
     if (repairs == 0 || out.depth == nullptr) return repairs;
+    if (split_bad) {
+      out.direct.store(i, direct);
+      out.indirect.store(i, indirect);
+    }
     // Only what changed is written: in place on the device, a clean pixel costs no store.
     if (repairs & kRepairColor) out.color.store(i, p.color);
     if (repairs & kRepairAlbedo) out.albedo.store(i, p.albedo);

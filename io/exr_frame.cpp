@@ -325,8 +325,8 @@ FrameHeader inspect_header(const std::string& path, const ExrReader& r,
   r.check_uint(channel::kMeshId);
   r.check_group(channel::kEmission, true);
   r.check_group(channel::kReference, true);
-  r.check_group(channel::kDirect, true);
-  r.check_group(channel::kIndirect, true);
+  h.has_direct = r.check_group(channel::kDirect, true);
+  h.has_indirect = r.check_group(channel::kIndirect, true);
   r.check_group(channel::kGradient, true);
   return h;
 }

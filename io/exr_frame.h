@@ -61,6 +61,7 @@ struct FrameHeader {
   int width = 0, height = 0;
   bool has_index = false;  // svgf.frame present
   int index = 0;           // svgf.frame; 0 when absent
+  bool has_direct = false, has_indirect = false;  // the optional split of color
 };
 
 namespace detail {

@@ -8,8 +8,9 @@
 //   float* plane(buffer, c); RgbView rgb(buffer, first); Image read(buffer)
 //                                          its planes as views; a host copy
 //   bool resize(w, h)                      frame size (true when buffers must be reallocated)
-//   FrameInputs inputs(frame, position)    this frame's inputs on the backend's side (world
-//                                          positions only when asked for; the gradient
+//   FrameInputs inputs(frame, position, split)  this frame's inputs on the backend's side (world
+//                                          positions, and direct and indirect, only when asked
+//                                          for; split: the frame carries both; the gradient
 //                                          samples when the frame has them)
 //   GuideView previous_guides()            the guides of the frame before (valid after one frame)
 //   RgbView output(out)                    where the frame's output goes
@@ -62,9 +63,10 @@ class CpuBackend {
 
   // The frame's inputs, sanitized (core/sanitize.h), as the stages read them: in place when the
   // read-only scan finds nothing wrong (the common case: one read of the inputs), else a
-  // repaired copy. `position`: the method reads world positions (then they are checked too).
-  FrameInputs inputs(const Frame& f, bool position = false) {
-    SanitizeInputs scan{width_, input_planes(f, position), {}};
+  // repaired copy. `position`: the method reads world positions (then they are checked too);
+  // `split`: direct and indirect (the frame carries both), checked as color is.
+  FrameInputs inputs(const Frame& f, bool position = false, bool split = false) {
+    SanitizeInputs scan{width_, input_planes(f, position, split), {}};
     engine_.run_tallying(kSanitizeStage, scan, width_, height_);
     FrameInputs in;
     in.guides = f.guides();
@@ -72,7 +74,11 @@ class CpuBackend {
     in.albedo = f.albedo.rgb();
     if (!f.emission.empty()) in.emission = f.emission.rgb();
     if (position) in.position = f.position.rgb();
-    if (engine_.tallies().any()) in = repaired_inputs(f, position);
+    if (split) {
+      in.direct = f.direct.rgb();
+      in.indirect = f.indirect.rgb();
+    }
+    if (engine_.tallies().any()) in = repaired_inputs(f, position, split);
     in.gradient = gradient_samples(f);
     current_guides_ = in.guides;
     return in;
@@ -133,8 +139,12 @@ class CpuBackend {
     return g;
   }
 
-  static InputPlanes input_planes(const Frame& f, bool position) {
+  static InputPlanes input_planes(const Frame& f, bool position, bool split) {
     InputPlanes p;
+    if (split) {
+      p.direct = f.direct.rgb();
+      p.indirect = f.indirect.rgb();
+    }
     p.color = f.color.rgb();
     p.albedo = f.albedo.rgb();
     if (!f.emission.empty()) p.emission = f.emission.rgb();
@@ -149,9 +159,10 @@ class CpuBackend {
   }
 
   // A copy of the frame's inputs with the bad pixels repaired (the same kernel, writing).
-  FrameInputs repaired_inputs(const Frame& f, bool position) {
+  FrameInputs repaired_inputs(const Frame& f, bool position, bool split) {
     enum : int { kColor = 0, kAlbedo = 3, kNormal = 6, kDepth = 9, kDepthDx, kDepthDy, kMotionX,
-                 kMotionY, kEmission = 14, kPosition = 17, kPlanes = 20 };
+                 kMotionY, kEmission = 14, kPosition = 17, kDirect = 20, kIndirect = 23,
+                 kPlanes = 26 };
     if (repaired_.width() != width_ || repaired_.height() != height_)
       repaired_ = Image(width_, height_, kPlanes);
     const size_t n = f.color.pixel_count();
@@ -164,6 +175,10 @@ class CpuBackend {
       copy(f.normal.plane(c), kNormal + c);
       if (!f.emission.empty()) copy(f.emission.plane(c), kEmission + c);
       if (position) copy(f.position.plane(c), kPosition + c);
+      if (split) {
+        copy(f.direct.plane(c), kDirect + c);
+        copy(f.indirect.plane(c), kIndirect + c);
+      }
     }
     copy(f.depth.plane(0), kDepth);
     copy(f.depth_gradient.plane(0), kDepthDx);
@@ -177,6 +192,10 @@ class CpuBackend {
     out.normal = repaired_.rgb(kNormal);
     if (!f.emission.empty()) out.emission = repaired_.rgb(kEmission);
     if (position) out.position = repaired_.rgb(kPosition);
+    if (split) {
+      out.direct = repaired_.rgb(kDirect);
+      out.indirect = repaired_.rgb(kIndirect);
+    }
     out.depth = repaired_.plane(kDepth);
     out.depth_dx = repaired_.plane(kDepthDx);
     out.depth_dy = repaired_.plane(kDepthDy);
@@ -188,6 +207,8 @@ class CpuBackend {
     in.emission = out.emission;
     in.normal = out.normal;
     in.position = out.position;
+    in.direct = out.direct;
+    in.indirect = out.indirect;
     in.depth = out.depth;
     in.depth_dx = out.depth_dx;
     in.depth_dy = out.depth_dy;
@@ -209,6 +230,8 @@ class CpuBackend {
     r.albedo = out.albedo;
     r.emission = out.emission;
     r.position = out.position;
+    r.direct = out.direct;
+    r.indirect = out.indirect;
     return r;
   }
 

@@ -67,6 +67,8 @@ class CudaBackend {
     output_.resize(0);
     position_.resize(0);
     staging_position_.resize(0, "");
+    split_.resize(0);
+    staging_split_.resize(0, "");
     staging_in_.resize(0, "");
     staging_out_.resize(0, "");
     width_ = height_ = 0;
@@ -103,8 +105,9 @@ class CudaBackend {
   // Uploads the frame: its planes copied into pinned memory, then one DMA transfer, timed as
   // the engine's upload stage.
   // `position`: the method reads world positions, uploaded into a buffer of their own (made on
-  // the first request), so the methods that do not read them do not pay for them.
-  FrameInputs inputs(const Frame& in, bool position = false) {
+  // the first request), so the methods that do not read them do not pay for them. `split`:
+  // direct and indirect (the frame carries both), likewise in a buffer of their own.
+  FrameInputs inputs(const Frame& in, bool position = false, bool split = false) {
     const size_t n = pixels();
     float* staging = staging_in_.get();
     auto stage = [&](const float* src, int plane) {
@@ -140,6 +143,15 @@ class CudaBackend {
       std::memcpy(staging_position_.get(), in.position.plane(0), 3 * n * sizeof(float));
       position_.upload_async(staging_position_.get(), 3 * n, engine_.stream());
     }
+    if (split) {
+      if (split_.size() != 6 * n) {
+        allocate(split_, 6, "direct and indirect");
+        staging_split_.resize(6 * n, "the pinned direct and indirect staging buffer");
+      }
+      std::memcpy(staging_split_.get(), in.direct.plane(0), 3 * n * sizeof(float));
+      std::memcpy(staging_split_.get() + 3 * n, in.indirect.plane(0), 3 * n * sizeof(float));
+      split_.upload_async(staging_split_.get(), 6 * n, engine_.stream());
+    }
     FrameInputs f;
     f.guides = guides(slot_);
     f.color = rgb(inputs_[slot_], kColor);
@@ -151,7 +163,11 @@ class CudaBackend {
       f.gradient.current = plane(inputs_[slot_], kGradient + 1);
       f.gradient.mask = plane(inputs_[slot_], kGradient + 2);
     }
-    sanitize(f, emission, position);
+    if (split) {
+      f.direct = rgb(split_, 0);
+      f.indirect = rgb(split_, 3);
+    }
+    sanitize(f, emission, position, split);
     return f;
   }
   GuideView previous_guides() const { return guides(1 - slot_); }
@@ -171,13 +187,17 @@ class CudaBackend {
  private:
   // The sanitize stage (core/sanitize.h), in place on the uploaded planes: a clean pixel is
   // only read.
-  void sanitize(const FrameInputs& f, bool emission, bool position) {
+  void sanitize(const FrameInputs& f, bool emission, bool position, bool split) {
     InputPlanesOut out;
     out.color = rgb(inputs_[slot_], kColor);
     out.albedo = rgb(inputs_[slot_], kAlbedo);
     if (emission) out.emission = rgb(inputs_[slot_], kEmission);
     out.normal = rgb(inputs_[slot_], kNormal);
     if (position) out.position = rgb(position_, 0);
+    if (split) {
+      out.direct = rgb(split_, 0);
+      out.indirect = rgb(split_, 3);
+    }
     out.depth = plane(inputs_[slot_], kDepth);
     out.depth_dx = plane(inputs_[slot_], kDepthDx);
     out.depth_dy = plane(inputs_[slot_], kDepthDy);
@@ -189,6 +209,8 @@ class CudaBackend {
     in.emission = f.emission;
     in.normal = out.normal;
     in.position = f.position;
+    in.direct = f.direct;
+    in.indirect = f.indirect;
     in.depth = out.depth;
     in.depth_dx = out.depth_dx;
     in.depth_dy = out.depth_dy;
@@ -253,8 +275,8 @@ class CudaBackend {
   int width_ = 0, height_ = 0;
   int slot_ = 0;  // input slot the next frame is uploaded into
   int method_planes_ = 0;
-  Buffer inputs_[2], output_, position_;
-  PinnedBuffer<float> staging_in_, staging_out_, staging_position_;
+  Buffer inputs_[2], output_, position_, split_;
+  PinnedBuffer<float> staging_in_, staging_out_, staging_position_, staging_split_;
 };
 
 }  // namespace svgf::cuda

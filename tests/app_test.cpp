@@ -73,6 +73,28 @@ TEST_CASE("svgf denoise: bad input is an error naming the file", "[app]") {
                       Catch::Contains("--iterations"));
   fs::remove_all(in);
   test::remove_output(out);
+
+  // SVGF's split (issue 12, item 2) needs direct and indirect together, and in every frame with
+  // --svgf-split on: found from the headers, before any output exists.
+  const fs::path plain = write_synthetic(scratch("split_in"), 2);
+  REQUIRE_THROWS_WITH(
+      app::denoise_command({plain.string(), out.string(), "--svgf-split", "on"}),
+      Catch::Contains(io::frame_file_name(0)) && Catch::Contains("--svgf-split on"));
+  CHECK_FALSE(fs::exists(out));
+  Frame half = test::SyntheticScene().frame(1);
+  half.direct = half.color;
+  io::write_frame((plain / io::frame_file_name(1)).string(), half);
+  REQUIRE_THROWS_WITH(app::denoise_command({plain.string(), out.string(), "--no-verify"}),
+                      Catch::Contains(io::frame_file_name(1)) &&
+                          Catch::Contains("'direct' without 'indirect'"));
+  CHECK_FALSE(fs::exists(out));
+  // Off does not read them; other methods never do.
+  REQUIRE(app::denoise_command({plain.string(), out.string(), "--no-verify", "--svgf-split", "off",
+                                "--no-preview"}) == 0);
+  REQUIRE(app::denoise_command({plain.string(), out.string(), "--no-verify", "--method",
+                                "gaussian", "--no-preview"}) == 0);
+  fs::remove_all(plain);
+  test::remove_output(out);
 }
 
 // Issue 15: `svgf denoise X X` overwrote every input frame. An output folder that is the input
@@ -274,6 +296,20 @@ TEST_CASE("svgf flags: --svgf-preset picks the paper's or Falcor's values, flags
   CHECK(taa.taa_alpha == 0.25f);
   CHECK_FALSE(params({}).taa);
   REQUIRE_THROWS_WITH(params({"--svgf-taa", "yes"}), Catch::Contains("--svgf-taa"));
+  // Direct and indirect apart (issue 12, item 2).
+  CHECK(params({}).split == SplitMode::Auto);
+  const SvgfParams split =
+      params({"--svgf-split", "on", "--indirect-iterations", "5", "--indirect-phi-color", "20"});
+  CHECK(split.split == SplitMode::On);
+  CHECK(split.indirect().iterations == 5);
+  CHECK(split.indirect().phi_color == 20.f);
+  CHECK(params({"--svgf-split", "off"}).split == SplitMode::Off);
+  REQUIRE_THROWS_WITH(params({"--svgf-split", "yes"}),
+                      Catch::Contains("--svgf-split") && Catch::Contains("auto, off or on"));
+  REQUIRE_THROWS_WITH(params({"--indirect-iterations", "13"}),
+                      Catch::Contains("--indirect-iterations: Value 13 not in range -1 to 12"));
+  REQUIRE_THROWS_WITH(params({"--indirect-phi-color", "0"}),
+                      Catch::Contains("--indirect-phi-color"));
 }
 
 TEST_CASE("svgf denoise --svgf-taa: TAA is timed as its own stage, a bad alpha names the flag",

@@ -95,6 +95,19 @@ std::vector<Source> sources() {
   return out;
 }
 
+// The frame's color split: a third of the reflected light (color - emission) as indirect, the
+// rest as direct.
+Frame with_split(Frame f) {
+  f.direct = f.color;
+  f.indirect = Image(f.width(), f.height(), 3);
+  for (size_t i = 0; i < f.color.data().size(); ++i) {
+    const float emitted = f.emission.empty() ? 0.f : f.emission.data()[i];
+    f.indirect.data()[i] = std::max(0.f, f.color.data()[i] - emitted) / 3.f;
+    f.direct.data()[i] = f.color.data()[i] - f.indirect.data()[i];
+  }
+  return f;
+}
+
 void count_values(const Image& im) { tally().frame_values += static_cast<int64_t>(im.data().size()); }
 
 }  // namespace
@@ -105,14 +118,25 @@ TEST_CASE("pipeline: CPU vs CUDA exact bitwise over whole sequences; fast within
   // and the variance of the mean) on every fixture too.
   SvgfParams converge = svgf_preset("converge");
   converge.antilag = Antilag::Statistics;
-  SvgfParams gradient;  // A-SVGF: only the synthetic sequence carries gradient samples
+  // A-SVGF, with TAA after it: only the sequences with gradient samples (the synthetic one,
+  // moving-shadow, light-switch).
+  SvgfParams gradient;
   gradient.antilag = Antilag::Gradient;
+  gradient.taa = true;
+  // And direct and indirect filtered apart (the frames' color split below), the indirect part
+  // with a wider filter.
+  SvgfParams split;
+  split.split = SplitMode::On;
+  split.indirect_iterations = 5;
+  split.indirect_phi_color = 20.f;
   const std::pair<std::string, SvgfParams> settings[] = {{"defaults", SvgfParams()},
                                                          {"converge + antilag", converge},
-                                                         {"gradient antilag", gradient}};
+                                                         {"gradient antilag + taa", gradient},
+                                                         {"split", split}};
   for (const auto& [setting, params] : settings)
   for (const Source& src : sources()) {
-    if (params.antilag == Antilag::Gradient && src.name.rfind("synthetic", 0) != 0) continue;
+    if (params.antilag == Antilag::Gradient && src.frames > 1 && src.frame(1).gradient.empty())
+      continue;
     tally().sequences.push_back(src.name + " (" + std::to_string(src.frames) + " frames, " +
                                 setting + ")");
     const auto make = [&, params = params](Backend b, Mode m) {
@@ -124,7 +148,7 @@ TEST_CASE("pipeline: CPU vs CUDA exact bitwise over whole sequences; fast within
     auto exact = make(Backend::Cuda, Mode::Exact);
     auto fast = make(Backend::Cuda, Mode::Fast);
     for (int k = 0; k < src.frames; ++k) {
-      const Frame f = src.frame(k);
+      const Frame f = params.split == SplitMode::On ? with_split(src.frame(k)) : src.frame(k);
       const std::string where = src.name + " (" + setting + "), frame " + std::to_string(k);
       if (k > 0 && src.cut(k)) {
         cpu->reset();

@@ -2,7 +2,8 @@
 // SVGF behind the Denoiser interface, written once over a backend (kernels_cpu/cpu_backend.h
 // says what a backend provides; kernels_cpu/svgf_cpu.cpp and kernels_cuda/svgf_cuda.cu
 // instantiate it). The history ping-pongs between two slots: a frame reads slot `slot_` and
-// writes the other.
+// writes the other. A frame split into direct and indirect (SvgfParams::split) filters direct
+// with the history below and indirect with a second one, allocated on the first split frame.
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -28,52 +29,45 @@ class SvgfDenoiser final : public Denoiser {
 
   void denoise(const Frame& in, Image& out) override {
     check_frame_consistent(in);
+    const bool split = splits(in);
     if (backend_.resize(in.width(), in.height())) allocate();
+    if (split && !split_allocated_) allocate_split();
+    // The history of a frame filtered the other way cannot continue (a single signal's holds
+    // direct + indirect, a split frame's direct history holds direct only): start afresh.
+    if (split != split_history_) has_history_ = false;
     auto& engine = backend_.engine();
     engine.begin_frame();
-    const FrameInputs cur = backend_.inputs(in);
+    const FrameInputs cur = backend_.inputs(in, /*position=*/false, split);
 
-    const int prev = slot_;
-    const int next = 1 - slot_;
-    SvgfFrameBuffers b;
-    b.guides = cur.guides;
-    b.prev_guides = backend_.previous_guides();
-    b.color = cur.color;
-    b.albedo = cur.albedo;
-    b.emission = cur.emission;
-    b.prev_color = backend_.rgb(color_history_[prev]);
-    b.prev_moment1 = backend_.plane(moments_[prev], 0);
-    b.prev_moment2 = backend_.plane(moments_[prev], 1);
-    b.prev_history = backend_.plane(history_[prev], 0);
-    b.next_color = backend_.rgb(color_history_[next]);
-    b.next_moment1 = backend_.plane(moments_[next], 0);
-    b.next_moment2 = backend_.plane(moments_[next], 1);
-    b.next_history = backend_.plane(history_[next], 0);
-    b.illumination = backend_.rgb(illumination_);
-    b.accumulated = {backend_.rgb(accumulated_), backend_.plane(accumulated_, 3)};
-    b.signal[0] = backend_.plane(signal_[0], 0);
-    b.signal[1] = backend_.plane(signal_[1], 0);
-    b.output = backend_.output(out);
+    SvgfFrameBuffers b = signal_buffers(cur, 0, backend_.output(out));
+    b.color = split ? cur.direct : cur.color;
     if (params_.taa) {
       b.remodulated = backend_.rgb(remodulated_);
-      b.prev_taa = backend_.rgb(taa_history_[prev]);
-      b.next_taa = backend_.rgb(taa_history_[next]);
+      b.prev_taa = backend_.rgb(taa_history_[slot_]);
+      b.next_taa = backend_.rgb(taa_history_[1 - slot_]);
     }
     if (gradient_mode()) {
       b.strata = backend_.plane(strata_, 0);
       if (has_gradient_samples(in)) b.gradient_samples = cur.gradient;
     }
+    SvgfFrameBuffers indirect;
+    if (split) {
+      indirect = signal_buffers(cur, 1, backend_.rgb(indirect_output_));
+      indirect.color = cur.indirect;
+      indirect.emission = {};  // the emission is part of direct
+    }
 #if defined(__CUDACC__)
     if (mode_ == Mode::Fast) {
-      b.packed_guides = backend_.plane(packed_guides_, 0);
-      run_svgf_frame<SvgfFast>(engine, b, params_, has_history_);
+      b.packed_guides = indirect.packed_guides = backend_.plane(packed_guides_, 0);
+      run<SvgfFast>(engine, split, b, indirect);
     } else
 #endif
-      run_svgf_frame<SvgfExact>(engine, b, params_, has_history_);
+      run<SvgfExact>(engine, split, b, indirect);
     backend_.finish(in, out);  // waits for the frame; raises any fault of its kernels
 
-    slot_ = next;
+    slot_ = 1 - slot_;
     has_history_ = true;
+    split_history_ = split;
     report_ = frame_report(engine);
   }
 
@@ -85,14 +79,16 @@ class SvgfDenoiser final : public Denoiser {
     return svgf_buffer::all(params_.taa);
   }
 
+  // After a split frame the history buffers are the direct signal's, and the scratch
+  // (illumination, accumulated) the indirect's, which ran last.
   Image read_buffer(std::string_view name) const override {
     namespace buf = svgf_buffer;
     const auto pick = [&]() -> const typename Backend::Buffer* {
       if (name == buf::kIllumination) return &illumination_;
       if (name == buf::kAccumulated) return &accumulated_;
-      if (name == buf::kMoments) return &moments_[slot_];
-      if (name == buf::kHistoryLength) return &history_[slot_];
-      if (name == buf::kColorHistory) return &color_history_[slot_];
+      if (name == buf::kMoments) return &moments_[0][slot_];
+      if (name == buf::kHistoryLength) return &history_[0][slot_];
+      if (name == buf::kColorHistory) return &color_history_[0][slot_];
       if (name == buf::kTaaHistory && params_.taa) return &taa_history_[slot_];
       return nullptr;
     };
@@ -128,12 +124,62 @@ class SvgfDenoiser final : public Denoiser {
     return static_cast<int>((floats + pixels - 1) / pixels);
   }
 
+  // Whether this frame is filtered as direct + indirect; std::invalid_argument for a frame that
+  // carries half the split (when the split is not off) or none of it with split on.
+  bool splits(const Frame& f) const {
+    if (params_.split == SplitMode::Off) return false;
+    const bool direct = !f.direct.empty(), indirect = !f.indirect.empty();
+    const std::string frame = "frame " + std::to_string(f.index) + ": ";
+    if (direct != indirect)
+      throw std::invalid_argument(frame + "channel '" + (direct ? "direct" : "indirect") +
+                                  "' without '" + (direct ? "indirect" : "direct") +
+                                  "': filtering them apart (--svgf-split) needs both");
+    if (!direct && params_.split == SplitMode::On)
+      throw std::invalid_argument(frame + "--svgf-split on needs the channels 'direct' and "
+                                  "'indirect', and the frame has neither");
+    return direct;
+  }
+
+  // One signal's buffers: history set `set` (0: color or direct, 1: indirect), the shared
+  // scratch, and its output.
+  SvgfFrameBuffers signal_buffers(const FrameInputs& cur, int set, RgbView output) {
+    const int prev = slot_;
+    const int next = 1 - slot_;
+    SvgfFrameBuffers b;
+    b.guides = cur.guides;
+    b.prev_guides = backend_.previous_guides();
+    b.color = cur.color;
+    b.albedo = cur.albedo;
+    b.emission = cur.emission;
+    b.prev_color = backend_.rgb(color_history_[set][prev]);
+    b.prev_moment1 = backend_.plane(moments_[set][prev], 0);
+    b.prev_moment2 = backend_.plane(moments_[set][prev], 1);
+    b.prev_history = backend_.plane(history_[set][prev], 0);
+    b.next_color = backend_.rgb(color_history_[set][next]);
+    b.next_moment1 = backend_.plane(moments_[set][next], 0);
+    b.next_moment2 = backend_.plane(moments_[set][next], 1);
+    b.next_history = backend_.plane(history_[set][next], 0);
+    b.illumination = backend_.rgb(illumination_);
+    b.accumulated = {backend_.rgb(accumulated_), backend_.plane(accumulated_, 3)};
+    b.signal[0] = backend_.plane(signal_[0], 0);
+    b.signal[1] = backend_.plane(signal_[1], 0);
+    b.output = output;
+    return b;
+  }
+
+  template <class Flavor, class Engine>
+  void run(Engine& engine, bool split, const SvgfFrameBuffers& b,
+           const SvgfFrameBuffers& indirect) {
+    run_svgf_frame<Flavor>(engine, b, params_, has_history_, split ? &indirect : nullptr);
+  }
+
   void allocate() {
+    split_allocated_ = false;
     try {
       for (int s = 0; s < 2; ++s) {
-        backend_.allocate(color_history_[s], 3, "color history");
-        backend_.allocate(moments_[s], 2, "moments");
-        backend_.allocate(history_[s], 1, "history length");
+        backend_.allocate(color_history_[0][s], 3, "color history");
+        backend_.allocate(moments_[0][s], 2, "moments");
+        backend_.allocate(history_[0][s], 1, "history length");
         backend_.allocate(signal_[s], 4, "a-trous buffers");
       }
       backend_.allocate(illumination_, 3, "illumination");
@@ -152,15 +198,36 @@ class SvgfDenoiser final : public Denoiser {
     has_history_ = false;
   }
 
+  // The indirect signal's history and output, on the first split frame at this size.
+  void allocate_split() {
+    try {
+      for (int s = 0; s < 2; ++s) {
+        backend_.allocate(color_history_[1][s], 3, "indirect color history");
+        backend_.allocate(moments_[1][s], 2, "indirect moments");
+        backend_.allocate(history_[1][s], 1, "indirect history length");
+      }
+      backend_.allocate(indirect_output_, 3, "indirect output");
+    } catch (...) {
+      release();
+      throw;
+    }
+    split_allocated_ = true;
+    has_history_ = false;
+  }
+
   void release() {
     for (int s = 0; s < 2; ++s) {
-      color_history_[s] = {};
-      moments_[s] = {};
-      history_[s] = {};
+      for (int set = 0; set < 2; ++set) {
+        color_history_[set][s] = {};
+        moments_[set][s] = {};
+        history_[set][s] = {};
+      }
       signal_[s] = {};
       taa_history_[s] = {};
     }
     remodulated_ = {};
+    indirect_output_ = {};
+    split_allocated_ = false;
     illumination_ = {};
     accumulated_ = {};
     packed_guides_ = {};
@@ -173,8 +240,12 @@ class SvgfDenoiser final : public Denoiser {
   Backend backend_;
   int slot_ = 0;  // history slot the next frame reads
   bool has_history_ = false;
-  typename Backend::Buffer color_history_[2], moments_[2], history_[2];
+  bool split_history_ = false;    // the history is a split frame's
+  bool split_allocated_ = false;  // the indirect history exists at this size
+  // History per signal ([0]: color or direct, [1]: indirect) and slot.
+  typename Backend::Buffer color_history_[2][2], moments_[2][2], history_[2][2];
   typename Backend::Buffer illumination_, accumulated_, signal_[2], packed_guides_, strata_;
+  typename Backend::Buffer indirect_output_;
   typename Backend::Buffer remodulated_, taa_history_[2];  // only with TAA
   FrameReport report_;
 };

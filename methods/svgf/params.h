@@ -36,6 +36,8 @@ inline Antilag parse_antilag(const std::string& s) {
   throw std::invalid_argument("svgf: --antilag must be off, statistics (or on) or gradient, got '" +
                               s + "'");
 }
+// Whether direct and indirect illumination are filtered apart (SvgfParams::split).
+enum class SplitMode { Auto, Off, On };
 
 struct SvgfParams {
   // Demodulation: albedo below this is clamped, so black albedo does not divide by zero.
@@ -111,6 +113,27 @@ struct SvgfParams {
   float variance_epsilon = 1e-4f;  // added under the square root of the luminance sigma
   float depth_gradient_floor = 1e-8f;
 
+  // Separate direct and indirect filtering (issue 12, item 2; Lighthouse2's Optix7Filter, which
+  // keeps luminance moments per signal and filters each with its own variance): when a frame
+  // carries `direct` and `indirect`, each runs the whole frame above with its own history,
+  // moments and variance (direct with the emission, indirect without), and the two remodulated
+  // results are added (docs/svgf.md: Direct and indirect). Auto: split when the frame carries
+  // both; On: a frame without them is an error; Off: `color` alone, as before.
+  SplitMode split = SplitMode::Auto;
+  // The indirect signal's a-trous iterations and luminance edge-stopping; -1: as iterations and
+  // phi_color. (Lighthouse2 filters both signals alike; these let the noisier indirect have a
+  // wider filter.)
+  int indirect_iterations = -1;
+  float indirect_phi_color = -1.f;
+
+  // The parameters the indirect signal is filtered with.
+  SvgfParams indirect() const {
+    SvgfParams q = *this;
+    if (indirect_iterations >= 0) q.iterations = indirect_iterations;
+    if (indirect_phi_color > 0.f) q.phi_color = indirect_phi_color;
+    return q;
+  }
+
   // std::invalid_argument naming the flag (or the member, for those without one) and its range.
   // Any value accepted here keeps every weight finite (tests/bad_input_test.cpp).
   void validate() const {
@@ -166,6 +189,12 @@ struct SvgfParams {
     if (!(std::isfinite(depth_gradient_floor) && depth_gradient_floor > 0.f))
       fail("depth_gradient_floor must be finite and > 0, got " +
            std::to_string(depth_gradient_floor));
+    if (indirect_iterations < -1 || indirect_iterations > 12)
+      fail("--indirect-iterations must be -1 (as --iterations) or in [0, 12], got " +
+           std::to_string(indirect_iterations));
+    if (!(indirect_phi_color == -1.f || (std::isfinite(indirect_phi_color) && indirect_phi_color > 0.f)))
+      fail("--indirect-phi-color must be -1 (as --phi-color) or finite and > 0, got " +
+           std::to_string(indirect_phi_color));
   }
 };
 
@@ -201,6 +230,22 @@ inline SvgfParams svgf_preset(const std::string& name) {
   }
   throw std::invalid_argument("svgf: --svgf-preset must be default, falcor, paper or converge, got '" +
                               name + "'");
+}
+
+inline const char* to_string(SplitMode m) {
+  switch (m) {
+    case SplitMode::Auto: return "auto";
+    case SplitMode::Off: return "off";
+    case SplitMode::On: return "on";
+  }
+  return "?";
+}
+// Throws std::invalid_argument naming the choices.
+inline SplitMode parse_split_mode(const std::string& s) {
+  if (s == "auto") return SplitMode::Auto;
+  if (s == "off") return SplitMode::Off;
+  if (s == "on") return SplitMode::On;
+  throw std::invalid_argument("svgf: --svgf-split must be auto, off or on, got '" + s + "'");
 }
 
 // Fixed numbers of the method, not tunables. Functions rather than constexpr arrays, because a

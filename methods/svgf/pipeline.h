@@ -19,6 +19,7 @@
 #include "methods/svgf/remodulate.h"
 #include "methods/svgf/reproject.h"
 #include "methods/svgf/sinks.h"
+#include "methods/svgf/split_sum.h"
 #include "methods/svgf/stages.h"
 #include "methods/svgf/variance.h"
 
@@ -189,9 +190,12 @@ inline ReprojectKernel reproject_kernel_for(const SvgfFrameBuffers& b, const Svg
   return k;
 }
 
-template <class Flavor = SvgfExact, class Engine>
-void run_svgf_frame(Engine& engine, const SvgfFrameBuffers& b, const SvgfParams& p,
-                    bool has_history) {
+// Stages 1 to 5 for one signal (the frame's color, or its direct or indirect part): its
+// history, its variance, its filter; the remodulated result goes to `out`. `lambda`: A-SVGF's
+// per-stratum lambda, or null.
+template <class Flavor, class Engine>
+void run_svgf_signal(Engine& engine, const SvgfFrameBuffers& b, const SvgfParams& p,
+                     bool has_history, const float* lambda, RgbView out) {
   namespace stage = svgf_stage;
   const int w = b.guides.width;
   const int h = b.guides.height;
@@ -199,14 +203,7 @@ void run_svgf_frame(Engine& engine, const SvgfFrameBuffers& b, const SvgfParams&
   const auto signal = [&](int k) { return signal_buffer(flavor, b, k); };
   using Signal = std::decay_t<decltype(signal(0))>;
   using ConstSignal = typename Flavor::ConstSignal;
-  const RemodulateSink remodulate{b.albedo, b.emission, p.taa ? b.remodulated : b.output,
-                                  p.albedo_epsilon};
-
-  // 0. A-SVGF: the temporal gradients of the frame's re-shaded samples -> lambda per stratum.
-  //    Without samples the reprojection falls back to the statistics anti-lag.
-  const bool gradient = runs_gradient_stages(b, p, has_history);
-  if (gradient) run_gradient_stages(engine, b, p);
-  const float* lambda = gradient ? b.gradient_lambda() : nullptr;
+  const RemodulateSink remodulate{b.albedo, b.emission, out, p.albedo_epsilon};
 
   // 1. (color - emission) / albedo -> illumination (the inputs are sanitized already).
   // 2. illumination + history -> accumulated color, moments and history length.
@@ -270,6 +267,35 @@ void run_svgf_frame(Engine& engine, const SvgfFrameBuffers& b, const SvgfParams&
                  ForwardKernel<ConstSignal, RemodulateSink>{w, signal(current), remodulate}, w,
                  h);
   });
+}
+
+// One frame. `indirect` (optional): the frame's color is split into direct (in `b`, with the
+// emission) and indirect (issue 12, item 2; docs/svgf.md: Direct and indirect): each signal runs
+// stages 1-5 with its own history, moments and variance, so its own edge-stopping; indirect
+// (no emission, its own output buffer) is filtered with p.indirect(), then added to direct. The
+// signals share the scratch buffers, one after the other; A-SVGF's lambda and TAA are the
+// frame's, computed and applied once.
+template <class Flavor = SvgfExact, class Engine>
+void run_svgf_frame(Engine& engine, const SvgfFrameBuffers& b, const SvgfParams& p,
+                    bool has_history, const SvgfFrameBuffers* indirect = nullptr) {
+  namespace stage = svgf_stage;
+  const int w = b.guides.width;
+  const int h = b.guides.height;
+
+  // 0. A-SVGF: the temporal gradients of the frame's re-shaded samples -> lambda per stratum.
+  //    Without samples the reprojection falls back to the statistics anti-lag.
+  const bool gradient = runs_gradient_stages(b, p, has_history);
+  if (gradient) run_gradient_stages(engine, b, p);
+  const float* lambda = gradient ? b.gradient_lambda() : nullptr;
+
+  // 1-5. The signal(s) -> the remodulated color (TAA's input when TAA is on).
+  const RgbView remodulated = p.taa ? b.remodulated : b.output;
+  run_svgf_signal<Flavor>(engine, b, p, has_history, lambda, remodulated);
+  if (indirect) {
+    run_svgf_signal<Flavor>(engine, *indirect, p.indirect(), has_history, lambda,
+                            indirect->output);
+    engine.run(stage::kSplitSum, SplitSumKernel{w, indirect->output, remodulated}, w, h);
+  }
 
   // 6. Optional TAA: the remodulated color blended with the reprojected previous TAA output,
   //    clamped to this frame's neighbourhood (core/taa.h); its history restarts with SVGF's.

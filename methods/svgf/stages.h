@@ -18,11 +18,14 @@ inline constexpr const char* kAtrous = "atrous";          // all iterations toge
 inline constexpr const char* kFeedback = "feedback";      // copy of the feedback tap
 inline constexpr const char* kRemodulate = "remodulate";  // fast mode: in the last iteration
 inline constexpr const char* kTaa = "taa";                // only with --svgf-taa on
+inline constexpr const char* kSplitSum = "split_sum";     // direct + indirect (split frames)
 
+// A split frame runs every stage but the gradients' and TAA once per signal (the times add),
+// then kSplitSum.
 inline std::vector<std::string> all(bool taa) {
   std::vector<std::string> v = {kSanitizeStage, kGradient, kGradientAtrous, kGradientLambda,
                                 kDemodulate,    kReproject, kVariance,     kAtrous,
-                                kFeedback,      kRemodulate};
+                                kFeedback,      kRemodulate, kSplitSum};
   if (taa) v.push_back(kTaa);
   return v;
 }
