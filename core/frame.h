@@ -19,6 +19,8 @@ struct Camera {
   std::array<float, 16> view_to_clip{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
 };
 
+constexpr int kGradientStratum = 3;  // A-SVGF strata are 3x3 pixels
+
 struct Frame {
   int index = 0;           // frame number within its sequence
   Image color;             // 3: noisy radiance, linear HDR (1 spp)
@@ -33,6 +35,9 @@ struct Frame {
   Image reference;         // 3, optional: converged radiance for quality measurement
   Image direct;            // 3, optional: direct illumination of `color`
   Image indirect;          // 3, optional: indirect illumination of `color`
+  Image gradient;          // 3, optional: A-SVGF gradient samples (docs/frame-format.md):
+                           // previous and current luminance of one re-shaded sample per
+                           // kGradientStratum^2 stratum, and 1 at the pixel that holds it
   Camera camera;
 
   int width() const { return color.width(); }
@@ -91,6 +96,7 @@ inline void check_frame_consistent(const Frame& f) {
   check(f.reference, "reference", 3, true);
   check(f.direct, "direct", 3, true);
   check(f.indirect, "indirect", 3, true);
+  check(f.gradient, "gradient", 3, true);
   if (f.mesh_id.size() != f.color.pixel_count())
     throw std::invalid_argument("frame " + std::to_string(f.index) +
                                 ": channel 'mesh_id' has the wrong size");
