@@ -10,4 +10,5 @@ string(REPLACE ";" "," svgf_cpu_variant_ids "${SVGF_CPU_VARIANTS}")
 add_test(NAME svgf_cpu_variants_isolated
   COMMAND ${CMAKE_COMMAND} -DLIBRARY=$<TARGET_FILE:svgf_cpu> -DVARIANTS=${svgf_cpu_variant_ids}
           -DWORK=${CMAKE_CURRENT_BINARY_DIR}/variant_isolation -DAR=${CMAKE_AR} -DNM=${CMAKE_NM}
-          -DOBJDUMP=${CMAKE_OBJDUMP} -P ${PROJECT_SOURCE_DIR}/kernels_cpu/check_variant_isolation.cmake)
+          -DOBJDUMP=${CMAKE_OBJDUMP} -DSANITIZED=$<OR:$<BOOL:${SVGF_SANITIZE}>,$<BOOL:${SVGF_FUZZ}>>
+          -P ${PROJECT_SOURCE_DIR}/kernels_cpu/check_variant_isolation.cmake)
