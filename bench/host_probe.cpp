@@ -12,6 +12,8 @@
 #include <thread>
 #include <vector>
 
+#include "kernels_cpu/cpu_variant.h"
+
 namespace svgf::bench {
 namespace {
 
@@ -26,7 +28,7 @@ double median_of(std::vector<double> v) {
 
 // 16 vectors of 8 floats: enough independent mul->add chains to cover the latency of both.
 constexpr int kLanes = 128;
-__attribute__((noinline)) float ops_kernel(long iterations, float m, float a) {
+__attribute__((always_inline)) inline float ops_chains(long iterations, float m, float a) {
   float acc[kLanes];
   for (int k = 0; k < kLanes; ++k) acc[k] = 1.f + 1e-3f * static_cast<float>(k);
   for (long i = 0; i < iterations; ++i)
@@ -34,6 +36,35 @@ __attribute__((noinline)) float ops_kernel(long iterations, float m, float a) {
   float s = 0.f;
   for (int k = 0; k < kLanes; ++k) s += acc[k];
   return s;
+}
+
+// The chains compiled like each CPU kernel variant (kernels_cpu/CMakeLists.txt), and with this
+// file's own flags (SVGF_CPU_ARCH_FLAGS in a build of one custom variant). Static functions
+// with the chains inlined: nothing of one is shared with another.
+using OpsKernel = float (*)(long, float, float);
+__attribute__((noinline)) float ops_default(long n, float m, float a) { return ops_chains(n, m, a); }
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+__attribute__((noinline, target("arch=x86-64-v2"))) float ops_v2(long n, float m, float a) {
+  return ops_chains(n, m, a);
+}
+__attribute__((noinline, target("arch=x86-64-v3"))) float ops_v3(long n, float m, float a) {
+  return ops_chains(n, m, a);
+}
+__attribute__((noinline, target("arch=x86-64-v4,prefer-vector-width=512"))) float ops_v4(
+    long n, float m, float a) {
+  return ops_chains(n, m, a);
+}
+#endif
+
+// The chains as the variant the kernels run (cpu::pick_variant) is compiled.
+OpsKernel ops_kernel() {
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+  const std::string id = cpu::pick_variant("").id;
+  if (id == "v2") return ops_v2;
+  if (id == "v3") return ops_v3;
+  if (id == "v4") return ops_v4;
+#endif
+  return ops_default;
 }
 
 }  // namespace
@@ -59,6 +90,7 @@ HostInfo query_host() {
   char name[256] = {};
   if (gethostname(name, sizeof name - 1) == 0) h.hostname = name;
   h.load = load_average();
+  h.cpu_kernels = cpu::pick_variant("").name;
   return h;
 }
 
@@ -107,6 +139,7 @@ double host_copy_gbs(int threads) {
 
 double host_float_ops_per_s(int threads) {
   const long iterations = 40'000'000;  // about 0.1 s a thread: thread start-up is noise
+  const OpsKernel kernel = ops_kernel();
   tbb::task_arena arena(std::max(threads, 1));
   std::vector<double> s;
   std::vector<float> results(static_cast<size_t>(std::max(threads, 1)));
@@ -114,7 +147,7 @@ double host_float_ops_per_s(int threads) {
     const auto t0 = std::chrono::steady_clock::now();
     arena.execute([&] {
       tbb::parallel_for(0, std::max(threads, 1), [&](int t) {
-        results[static_cast<size_t>(t)] = ops_kernel(iterations, 0.999f, 0.001f);
+        results[static_cast<size_t>(t)] = kernel(iterations, 0.999f, 0.001f);
       });
     });
     s.push_back(seconds_since(t0));

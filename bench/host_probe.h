@@ -11,6 +11,7 @@ struct HostInfo {
   int hardware_threads = 0;
   std::array<double, 3> load{};  // /proc/loadavg at the time of the query
   std::string hostname;
+  std::string cpu_kernels;  // the CPU kernel variant that runs (kernels_cpu/cpu_variant.h)
 };
 
 HostInfo query_host();
@@ -30,8 +31,8 @@ double others_share(const CpuUsage& a, const CpuUsage& b);
 // memcpy of 256 MiB split over `threads` workers; bytes read + written per second.
 double host_copy_gbs(int threads);
 // Float operations per second of independent vectorized multiply-then-add chains on `threads`
-// workers, compiled with the CPU kernels' instruction-set flags and no FMA: the rate the
-// a-trous loops could reach if nothing else limited them.
+// workers, compiled like the CPU kernel variant that runs (kernels_cpu/cpu_variant.h), no FMA:
+// the rate the a-trous loops could reach if nothing else limited them.
 double host_float_ops_per_s(int threads);
 
 }  // namespace svgf::bench

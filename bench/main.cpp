@@ -136,6 +136,7 @@ int run_command(const RunArgs& a) {
   const HostInfo host = query_host();
   doc["host"] = {{"cpu_model", host.cpu_model},
                  {"hardware_threads", host.hardware_threads},
+                 {"cpu_kernels", host.cpu_kernels},
                  {"load", host.load}};
   Ceilings ceilings;
   if (a.no_ceilings) {

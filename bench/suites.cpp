@@ -187,6 +187,7 @@ json host_json(const HostInfo& h) {
   return {{"cpu_model", h.cpu_model},
           {"hardware_threads", h.hardware_threads},
           {"hostname", h.hostname},
+          {"cpu_kernels", h.cpu_kernels},
           {"load", h.load}};
 }
 

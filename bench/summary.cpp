@@ -256,7 +256,8 @@ std::string summary_markdown(const Results& r, const std::vector<Point>& pts,
        << h.value("cpu_model", "?") << ", " << h.value("hardware_threads", 0)
        << " hardware threads (host " << h.value("hostname", "?")
        << ").\n\nMeasured ceilings:\n\n| threads | memcpy GB/s (read + write) | float ops/s "
-          "(mul+add chains, AVX2, no FMA) |\n|---:|---:|---:|\n";
+          "(mul+add chains, "
+       << h.value("cpu_kernels", "AVX2") << ", no FMA) |\n|---:|---:|---:|\n";
     for (const auto& [t, c] : (*cpu)["ceilings"].items())
       md << "| " << t << " | " << fmt(c["copy_gbs"].get<double>(), 1) << " | "
          << fmt(c["ops_per_s"].get<double>() / 1e9, 1) << " G |\n";

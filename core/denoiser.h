@@ -32,6 +32,9 @@ struct EngineConfig {
   int threads = 0;   // CPU worker threads; 0: all cores
   int block_x = 32;  // CUDA block shape (any shape gives the same bits; kernels_cuda/launch_shape.h)
   int block_y = 8;
+  // The CPU kernels' instruction-set variant (kernels_cpu/cpu_variant.h): "auto" (the widest
+  // this CPU runs), "v2", "v3", "v4"; empty: the environment variable SVGF_CPU_ISA, else auto.
+  std::string cpu_isa;
 };
 
 // Pixels of one frame whose inputs the sanitize stage repaired, per kind (core/sanitize.h has

@@ -26,6 +26,11 @@
 #include "core/stage_times.h"
 #include "kernels_cpu/cpu_engine.h"
 
+// Compiled outside the variants (not in this project): the includer's own flags.
+#if !defined(SVGF_CPU_VARIANT_NAME)
+#define SVGF_CPU_VARIANT_NAME "x86-64 (the includer's flags)"
+#endif
+
 namespace svgf::cpu {
 
 class CpuBackend {
@@ -39,8 +44,11 @@ class CpuBackend {
   }
 
   Engine& engine() { return engine_; }
+  // E.g. "cpu exact, x86-64-v3, 2 threads": the instruction-set variant this code was compiled
+  // into (kernels_cpu/CMakeLists.txt defines its name for each variant's objects).
   std::string description() const {
-    return "cpu exact, " + std::to_string(engine_.threads()) + " threads";
+    return std::string("cpu exact, ") + SVGF_CPU_VARIANT_NAME + ", " +
+           std::to_string(engine_.threads()) + " threads";
   }
 
   int width() const { return width_; }
