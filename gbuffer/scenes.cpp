@@ -17,14 +17,19 @@ const Material kGreen = diffuse(0.14f, 0.45f, 0.091f);
 const Material kBlue = diffuse(0.10f, 0.18f, 0.55f);
 const Material kLight = emitter(34.f, 28.f, 20.f);
 
-// Room [-1,1] x [0,2] x [-1,1], open at the front, with a 0.5 x 0.5 ceiling light.
-void add_cornell_room(SceneDesc& s) {
+// Room [-1,1] x [0,2] x [-1,1], open at the front, without a light.
+void add_cornell_walls(SceneDesc& s) {
   const V lo(-1, 0, -1), hi(1, 2, 1);
   s.objects.push_back(placed("floor", kWhite, {room_face(lo, hi, kFloor)}, V(0)));
   s.objects.push_back(placed("ceiling", kWhite, {room_face(lo, hi, kCeiling)}, V(0)));
   s.objects.push_back(placed("back", kWhite, {room_face(lo, hi, kBack)}, V(0)));
   s.objects.push_back(placed("left", kRed, {room_face(lo, hi, kLeft)}, V(0)));
   s.objects.push_back(placed("right", kGreen, {room_face(lo, hi, kRight)}, V(0)));
+}
+
+// The room with a 0.5 x 0.5 ceiling light.
+void add_cornell_room(SceneDesc& s) {
+  add_cornell_walls(s);
   s.objects.push_back(
       placed("light", kLight, {ceiling_light(-0.25, 1.998, -0.25, 0.5, 0.5)}, V(0)));
 }
@@ -191,12 +196,7 @@ SceneDesc light_switch() {
   s.summary = "Cornell box lit by two lights; the larger switches off at frame 6";
   anti_lag_defaults(s);
   constexpr int kSwitch = 6;
-  const V lo(-1, 0, -1), hi(1, 2, 1);
-  s.objects.push_back(placed("floor", kWhite, {room_face(lo, hi, kFloor)}, V(0)));
-  s.objects.push_back(placed("ceiling", kWhite, {room_face(lo, hi, kCeiling)}, V(0)));
-  s.objects.push_back(placed("back", kWhite, {room_face(lo, hi, kBack)}, V(0)));
-  s.objects.push_back(placed("left", kRed, {room_face(lo, hi, kLeft)}, V(0)));
-  s.objects.push_back(placed("right", kGreen, {room_face(lo, hi, kRight)}, V(0)));
+  add_cornell_walls(s);
   Object a = placed("light-a", kLight, {ceiling_light(-0.75, 1.998, -0.45, 0.45, 0.45)}, V(0));
   a.emission_scale = [](double t) { return t < kSwitch ? 1.f : 0.f; };
   s.objects.push_back(a);
