@@ -8,10 +8,10 @@
 //   float* plane(buffer, c); RgbView rgb(buffer, first); Image read(buffer)
 //                                          its planes as views; a host copy
 //   bool resize(w, h)                      frame size (true when buffers must be reallocated)
-//   FrameInputs inputs(frame, position, split)  this frame's inputs on the backend's side (world
-//                                          positions, and direct and indirect, only when asked
-//                                          for; split: the frame carries both; the gradient
-//                                          samples when the frame has them)
+//   FrameInputs inputs(frame, position, split, gradient)  this frame's inputs on the backend's
+//                                          side (world positions, direct and indirect, and the
+//                                          gradient samples only when asked for; split: the
+//                                          frame carries both)
 //   GuideView previous_guides()            the guides of the frame before (valid after one frame)
 //   RgbView output(out)                    where the frame's output goes
 //   void finish(frame, out)                after the frame: output to the host, guides kept
@@ -73,7 +73,8 @@ class CpuBackend {
   // read-only scan finds nothing wrong (the common case: one read of the inputs), else a
   // repaired copy. `position`: the method reads world positions (then they are checked too);
   // `split`: direct and indirect (the frame carries both), checked as color is.
-  FrameInputs inputs(const Frame& f, bool position = false, bool split = false) {
+  FrameInputs inputs(const Frame& f, bool position = false, bool split = false,
+                     bool gradient = false) {
     SanitizeInputs scan{width_, input_planes(f, position, split), {}};
     engine_.run_tallying(kSanitizeStage, scan, width_, height_);
     FrameInputs in;
@@ -87,7 +88,7 @@ class CpuBackend {
       in.indirect = f.indirect.rgb();
     }
     if (engine_.tallies().any()) in = repaired_inputs(f, position, split);
-    in.gradient = gradient_samples(f);
+    if (gradient) in.gradient = gradient_samples(f);
     current_guides_ = in.guides;
     return in;
   }

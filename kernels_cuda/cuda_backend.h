@@ -107,7 +107,10 @@ class CudaBackend {
   // `position`: the method reads world positions, uploaded into a buffer of their own (made on
   // the first request), so the methods that do not read them do not pay for them. `split`:
   // direct and indirect (the frame carries both), likewise in a buffer of their own.
-  FrameInputs inputs(const Frame& in, bool position = false, bool split = false) {
+  // `gradient`: the method reads A-SVGF's gradient samples (uploaded only then, when the frame
+  // has them).
+  FrameInputs inputs(const Frame& in, bool position = false, bool split = false,
+                     bool want_gradient = false) {
     const size_t n = pixels();
     float* staging = staging_in_.get();
     auto stage = [&](const float* src, int plane) {
@@ -127,7 +130,7 @@ class CudaBackend {
     const bool emission = !in.emission.empty();
     if (emission)
       for (int c = 0; c < 3; ++c) stage(in.emission.plane(c), kEmission + c);
-    const bool gradient = !in.gradient.empty();
+    const bool gradient = want_gradient && !in.gradient.empty();
     if (gradient)
       for (int c = 0; c < 3; ++c) stage(in.gradient.plane(c), kGradient + c);
     // The optional planes come last: the upload stops after the last one the frame has (a

@@ -37,7 +37,7 @@ class SvgfDenoiser final : public Denoiser {
     if (split != split_history_) has_history_ = false;
     auto& engine = backend_.engine();
     engine.begin_frame();
-    const FrameInputs cur = backend_.inputs(in, /*position=*/false, split);
+    const FrameInputs cur = backend_.inputs(in, /*position=*/false, split, gradient_mode());
 
     SvgfFrameBuffers b = signal_buffers(cur, 0, backend_.output(out));
     b.color = split ? cur.direct : cur.color;
