@@ -95,6 +95,10 @@ void MethodParamFlags::add_to(CLI::App& app) {
        [](DenoiserConfig& c, float v) { c.svgf.gradient_phi_depth = v; })->check(cli::NotNaN);
   flag("gradient-phi-normal", "X", svgf, "... their normal exponent (default 128)",
        [](DenoiserConfig& c, float v) { c.svgf.gradient_phi_normal = v; })->check(cli::NotNaN);
+  flag("gradient-lambda-radius", "R", svgf,
+       "... a pixel takes the largest lambda of the (2R+1)^2 strata around its own (default 1)",
+       [](DenoiserConfig& c, int v) { c.svgf.gradient_lambda_radius = v; })
+      ->check(CLI::Range(0, 3));
   const CLI::Validator split = cli::accepted_by([](const std::string& s) { parse_split_mode(s); });
   flag("svgf-split", "auto|off|on", svgf,
        "filter direct and indirect apart, auto = when the frame carries both (default auto)",

@@ -35,6 +35,8 @@ std::string params_key(const DenoiserConfig& d) {
         s << " asvgf" << p.gradient_iterations;
         unless_default("gpd", p.gradient_phi_depth, def.gradient_phi_depth);
         unless_default("gpn", p.gradient_phi_normal, def.gradient_phi_normal);
+        unless_default("glr", static_cast<float>(p.gradient_lambda_radius),
+                       static_cast<float>(def.gradient_lambda_radius));
       }
       if (p.antilag != Antilag::Off)
         s << " antilag" << p.antilag_low << '-' << p.antilag_high << '/' << p.antilag_relative;
@@ -104,6 +106,7 @@ json params_json(const DenoiserConfig& d) {
               {"gradient_iterations", p.gradient_iterations},
               {"gradient_phi_depth", p.gradient_phi_depth},
               {"gradient_phi_normal", p.gradient_phi_normal},
+              {"gradient_lambda_radius", p.gradient_lambda_radius},
               {"taa", p.taa}, {"taa_alpha", p.taa_alpha},
               {"split", to_string(p.split)},
               {"indirect_iterations", p.indirect_iterations},

@@ -86,6 +86,20 @@ void samples_per_stratum(const TestDevice& d) {
         3, 2, "gradient lambda");
   const float want[6] = {1.f / 3.f, 0.f, 0.f, 1.f / 1.5f, 0.f, 0.f};
   for (int s = 0; s < 6; ++s) REQUIRE(lambda.plane(0)[s] == want[s]);
+
+  // Radius 1: each stratum takes the largest lambda of the 3x3 strata around it, clipped to
+  // the 3x2 stratum image: stratum 3's 2/3 reaches strata 0, 1, 3 and 4; strata 2 and 5 see
+  // strata 1, 2, 4 and 5 only, all 0 (stratum 0's 1/3 is two columns away).
+  r.run(GradientLambdaKernel{3,
+                             {r.plane(std::as_const(signal), 0), r.plane(std::as_const(signal), 1),
+                              r.plane(std::as_const(signal), 2)},
+                             r.plane(lambda), 2, 1},
+        3, 2, "gradient lambda, radius 1");
+  const float want_r1[6] = {1.f / 1.5f, 1.f / 1.5f, 0.f, 1.f / 1.5f, 1.f / 1.5f, 0.f};
+  for (int s = 0; s < 6; ++s) {
+    INFO("stratum " << s);
+    REQUIRE(lambda.plane(0)[s] == want_r1[s]);
+  }
 }
 
 // lambda = min(1, |delta| / normalizer) and alpha' = (1 - lambda) alpha + lambda (Eq. 15).

@@ -12,8 +12,10 @@
 //                             edge-stopped by mesh id, depth and normal at the strata's guide
 //                             pixels; strata without data weigh 0;
 //   3. GradientLambdaKernel   lambda = min(1, |delta| / normalizer) (0 where the normalizer is
-//                             0), which the reprojection turns into alpha' = (1 - lambda) alpha
-//                             + lambda (the paper's Eq. 15; methods/svgf/reproject.h).
+//                             0), the largest over the (2 r + 1)^2 strata around (Schied's
+//                             reference code, gGradientFilterRadius), which the reprojection
+//                             turns into alpha' = (1 - lambda) alpha + lambda (the paper's
+//                             Eq. 15; methods/svgf/reproject.h).
 #include <cstdint>
 #include <type_traits>
 
@@ -157,14 +159,27 @@ SVGF_HD float gradient_lambda(float delta, float normalizer) {
   return normalizer > 0.f ? min_f(1.f, abs_f(delta) / normalizer) : 0.f;
 }
 
-// Stage 3, per stratum.
+// Stage 3, per stratum: the largest lambda of the strata within `radius` (a change seen by a
+// neighbouring stratum's one sample also restarts this stratum's pixels: a moving shadow's edge
+// crosses strata whose sample it missed). Max is exact in any order.
 struct GradientLambdaKernel {
   int strata_width = 0;
   GradientPlanes<const float> in;
   float* lambda = nullptr;
+  int strata_height = 0;
+  int radius = 0;
+  SVGF_HD float lambda_of(int s) const {
+    return in.weight[s] > 0.f ? gradient_lambda(in.delta[s], in.normalizer[s]) : 0.f;
+  }
   SVGF_HD void operator()(int sx, int sy) const {
-    const int s = sy * strata_width + sx;
-    lambda[s] = in.weight[s] > 0.f ? gradient_lambda(in.delta[s], in.normalizer[s]) : 0.f;
+    float l = lambda_of(sy * strata_width + sx);
+    for (int dy = -radius; dy <= radius; ++dy)
+      for (int dx = -radius; dx <= radius; ++dx) {
+        const int qx = sx + dx, qy = sy + dy;
+        if (qx < 0 || qy < 0 || qx >= strata_width || qy >= strata_height) continue;
+        l = max_f(l, lambda_of(qy * strata_width + qx));
+      }
+    lambda[sy * strata_width + sx] = l;
   }
 };
 

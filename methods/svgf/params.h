@@ -81,6 +81,9 @@ struct SvgfParams {
   int gradient_iterations = 3;
   float gradient_phi_depth = 1.f;
   float gradient_phi_normal = 128.f;
+  // A pixel's lambda is the largest of the strata within gradient_lambda_radius of its own
+  // (Schied's reference code and its ports: gGradientFilterRadius); 0 reads its own alone.
+  int gradient_lambda_radius = 1;
 
   // Reprojection tap tests. A tap is kept when its mesh id matches, its world normals agree to
   // within reproject_normal_cos, and |z - z_prev| <= scale * fwidth(z) + relative * z.
@@ -173,6 +176,9 @@ struct SvgfParams {
       fail("--gradient-iterations must be in [0, 8], got " + std::to_string(gradient_iterations));
     at_least(gradient_phi_depth, 0.f, "--gradient-phi-depth");
     at_least(gradient_phi_normal, 0.f, "--gradient-phi-normal");
+    if (gradient_lambda_radius < 0 || gradient_lambda_radius > 3)
+      fail("--gradient-lambda-radius must be in [0, 3], got " +
+           std::to_string(gradient_lambda_radius));
     if (!(std::isfinite(antilag_floor) && antilag_floor > 0.f))
       fail("antilag_floor must be finite and > 0, got " + std::to_string(antilag_floor));
     at_least(reproject_depth_gradient_scale, 0.f, "reproject_depth_gradient_scale");

@@ -162,7 +162,9 @@ void run_gradient_stages(Engine& engine, const SvgfFrameBuffers& b, const SvgfPa
     current = 1 - current;
   }
   engine.run(stage::kGradientLambda,
-             GradientLambdaKernel{sw, b.gradient_signal(current), b.gradient_lambda()}, sw, sh);
+             GradientLambdaKernel{sw, b.gradient_signal(current), b.gradient_lambda(), sh,
+                                  p.gradient_lambda_radius},
+             sw, sh);
 }
 
 // `gradient_lambda`: A-SVGF's lambda per stratum when the gradient stages ran this frame.

@@ -1,0 +1,71 @@
+#pragma once
+// How a denoiser follows lighting that changes (issue 12; docs/metrics.md, "Shadow contrast and
+// lag"): the contrast of a moving shadow against its reference's, and the lag, in frames, until
+// the error returns to its steady level after the light changes. Both find their regions from
+// the sequence's references and mesh ids alone, so any rendered sequence with a still camera
+// can be measured (the measures compare pixels across frames).
+#include <cstdint>
+#include <vector>
+
+#include "core/image.h"
+
+namespace svgf::metrics {
+
+// A set of pixels of one frame.
+struct PixelMask {
+  std::vector<uint8_t> inside;  // width * height, 1 = in the region
+  size_t count = 0;
+};
+
+// Where a moving shadow lies in one frame, and the lit pixels of the same surfaces around it.
+// A pixel's unshadowed level is the largest luminance its reference reaches over the sequence on
+// frames where it shows the same mesh; the pixel is in shadow where its reference lies below
+// `shadow_fraction` of that level, lit where it lies above `lit_fraction` of it within `ring`
+// pixels (Chebyshev distance) of a shadow pixel of the same mesh. Background pixels (mesh 0)
+// never count; nor do pixels between the two fractions (penumbrae).
+struct ShadowRule {
+  float shadow_fraction = 0.5f;
+  float lit_fraction = 0.9f;
+  int ring = 4;
+};
+
+struct ShadowRegions {
+  PixelMask shadow, lit;
+};
+
+class ShadowFinder {
+ public:
+  // references[k] and mesh_ids[k] of every frame k of the sequence (equal sizes, still camera).
+  ShadowFinder(const std::vector<Image>& references,
+               const std::vector<std::vector<uint32_t>>& mesh_ids, ShadowRule rule = {});
+  ShadowRegions regions(size_t frame) const;
+
+ private:
+  const std::vector<Image>& references_;
+  const std::vector<std::vector<uint32_t>>& mesh_ids_;
+  ShadowRule rule_;
+};
+
+// 1 - mean luminance over the shadow / mean luminance over the lit pixels (Rec. 709, linear):
+// 0 where the shadow is gone, 1 for a black shadow. NaN when a region is empty or the lit mean
+// is not positive.
+double shadow_contrast(const Image& image, const ShadowRegions& regions);
+
+// Pixels whose reference luminance changes between frames `before` and `after` by more than
+// `relative` of the larger of the two (and at least `floor`), on the same mesh in both.
+PixelMask changed_pixels(const Image& reference_before, const Image& reference_after,
+                         const std::vector<uint32_t>& mesh_before,
+                         const std::vector<uint32_t>& mesh_after, float relative = 0.25f,
+                         float floor = 1e-3f);
+
+// relMSE (image_metrics.h) over the pixels of `mask` only; NaN for an empty mask.
+double relmse_in(const Image& test, const Image& reference, const PixelMask& mask);
+
+// The lag after a change at frame `change`: the first k >= 0 with
+// error_db[change + k] <= steady + tolerance_db, where steady is the mean of error_db over the
+// `window` frames before the change (error in dB, lower is better, e.g. 10 log10 relMSE).
+// -1 when the error never returns within the sequence. Needs change >= window >= 1.
+int lag_frames(const std::vector<double>& error_db, size_t change, size_t window = 3,
+               double tolerance_db = 1.0);
+
+}  // namespace svgf::metrics
