@@ -54,20 +54,20 @@ void MethodParamFlags::add_to(CLI::App& app) {
   flag("iterations", "N", {"svgf", "wavelet"}, "a-trous iterations (default 4)",
        [](DenoiserConfig& c, int v) { c.svgf.iterations = c.wavelet.iterations = v; })
       ->check(CLI::Range(0, 12));
-  flag("feedback-tap", "N", svgf, "a-trous iteration fed back as history, -1 none (default 1)",
+  flag("feedback-tap", "N", svgf, "a-trous iteration fed back as history, -1 none (default -1)",
        [](DenoiserConfig& c, int v) { c.svgf.feedback_tap = v; })
       ->check(CLI::Range(-1, 11));
-  flag("alpha", "A", svgf, "color temporal blend floor (default 0.05)",
+  flag("alpha", "A", svgf, "color temporal blend floor (default 0.03)",
        [](DenoiserConfig& c, float v) { c.svgf.alpha = v; })->check(cli::NotNaN);
   flag("moments-alpha", "A", svgf, "moments temporal blend floor (default 0.2)",
        [](DenoiserConfig& c, float v) { c.svgf.moments_alpha = v; })->check(cli::NotNaN);
-  flag("phi-color", "X", svgf, "luminance edge-stopping (default 10)",
+  flag("phi-color", "X", svgf, "luminance edge-stopping (default 4)",
        [](DenoiserConfig& c, float v) { c.svgf.phi_color = v; })->check(cli::NotNaN);
-  flag("history-cap", "N", svgf, "longest history in frames (default 32)",
+  flag("history-cap", "N", svgf, "longest history in frames (default 64)",
        [](DenoiserConfig& c, int v) { c.svgf.history_cap = v; })
       ->check(CLI::Range(1, 4096));
   flag("variance-of-mean", "on|off", svgf,
-       "filter with the accumulated mean's variance (default off)",
+       "filter with the accumulated mean's variance (default on)",
        [](DenoiserConfig& c, bool v) { c.svgf.variance_of_mean = v; })->check(on_off);
   flag("svgf-taa", "on|off", svgf, "temporal anti-aliasing after remodulation (default off)",
        [](DenoiserConfig& c, bool v) { c.svgf.taa = v; })->check(on_off);
@@ -76,7 +76,7 @@ void MethodParamFlags::add_to(CLI::App& app) {
   const CLI::Validator antilag = cli::accepted_by([](const std::string& s) { parse_antilag(s); });
   flag("antilag", "MODE", svgf,
        "shorten a history the frame contradicts: off, statistics (alias on: its neighbourhood) or "
-       "gradient (A-SVGF's gradient samples; statistics on frames without) (default off)",
+       "gradient (A-SVGF's gradient samples; statistics on frames without) (default gradient)",
        [](DenoiserConfig& c, const std::string& v) { c.svgf.antilag = parse_antilag(v); })
       ->check(antilag);
   flag("antilag-radius", "R", svgf, "... the (2R+1)^2 neighbourhood (default 2)",
@@ -88,7 +88,7 @@ void MethodParamFlags::add_to(CLI::App& app) {
        [](DenoiserConfig& c, float v) { c.svgf.antilag_high = v; })->check(cli::NotNaN);
   flag("antilag-relative", "R", svgf, "... tolerance + R x luminance (default 0.05)",
        [](DenoiserConfig& c, float v) { c.svgf.antilag_relative = v; })->check(cli::NotNaN);
-  flag("gradient-iterations", "N", svgf, "A-SVGF: a-trous steps over the gradients (default 3)",
+  flag("gradient-iterations", "N", svgf, "A-SVGF: a-trous steps over the gradients (default 1)",
        [](DenoiserConfig& c, int v) { c.svgf.gradient_iterations = v; })
       ->check(CLI::Range(0, 8));
   flag("gradient-phi-depth", "X", svgf, "... their depth edge-stopping (default 1)",

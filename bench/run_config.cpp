@@ -199,12 +199,13 @@ RunConfig svgf_config(Backend backend, Mode mode, int iterations, int feedback_t
 
 std::vector<RunConfig> svgf_preset_configs(Backend backend, Mode mode, int threads) {
   std::vector<RunConfig> v;
-  for (const char* name : {"paper", "converge"}) {
+  for (const char* name : {"paper", "falcor", "converge"}) {
     RunConfig c = project_config("svgf", backend, mode, threads);
     c.denoiser.svgf = svgf_preset(name);
     v.push_back(c);
   }
-  RunConfig antilag = v.back();
+  // The defaults with the anti-lag rule frames without gradient samples run.
+  RunConfig antilag = project_config("svgf", backend, mode, threads);
   antilag.denoiser.svgf.antilag = Antilag::Statistics;
   v.push_back(antilag);
   RunConfig taa = project_config("svgf", backend, mode, threads);  // the defaults + TAA

@@ -143,4 +143,21 @@ int lag_frames(const std::vector<double>& error_db, size_t change, size_t window
   return -1;
 }
 
+int lag_frames(const std::vector<double>& error_db, const std::vector<double>& baseline_db,
+               size_t change, double tolerance_db) {
+  if (baseline_db.size() != error_db.size() || change >= error_db.size())
+    throw std::invalid_argument("lag_frames: a baseline per frame, the change inside");
+  for (size_t k = change; k < error_db.size(); ++k)
+    if (error_db[k] <= baseline_db[k] + tolerance_db) return static_cast<int>(k - change);
+  return -1;
+}
+
+std::vector<double> restart_baseline(const std::vector<double>& error_db, size_t change) {
+  if (change == 0 || change >= error_db.size())
+    throw std::invalid_argument("restart_baseline: the change must be inside the sequence");
+  std::vector<double> b = error_db;
+  for (size_t k = change; k < error_db.size(); ++k) b[k] = error_db[k - change];
+  return b;
+}
+
 }  // namespace svgf::metrics

@@ -68,4 +68,16 @@ double relmse_in(const Image& test, const Image& reference, const PixelMask& mas
 int lag_frames(const std::vector<double>& error_db, size_t change, size_t window = 3,
                double tolerance_db = 1.0);
 
+// The same against a baseline per frame: the first k >= 0 with
+// error_db[change + k] <= baseline_db[change + k] + tolerance_db; -1 if never.
+int lag_frames(const std::vector<double>& error_db, const std::vector<double>& baseline_db,
+               size_t change, double tolerance_db = 1.0);
+
+// The steady level of a sequence too short to reach one before the change (a history that
+// still converges when the light changes): frame change + k is held to the error of frame k,
+// the same pixels at the same history age after the sequence began. Frames before `change`
+// keep their own error. A method that restarts exactly the changed pixels then lags 0 or 1
+// frames; one that keeps the old light lags until its history forgets it.
+std::vector<double> restart_baseline(const std::vector<double>& error_db, size_t change);
+
 }  // namespace svgf::metrics

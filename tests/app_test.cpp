@@ -287,7 +287,11 @@ TEST_CASE("svgf flags: --svgf-preset picks the paper's or Falcor's values, flags
   const SvgfParams asvgf = params({"--antilag", "gradient", "--gradient-iterations", "5"});
   CHECK(asvgf.antilag == Antilag::Gradient);
   CHECK(asvgf.gradient_iterations == 5);
-  CHECK(params({}).antilag == Antilag::Off);
+  CHECK(params({}).antilag == Antilag::Gradient);  // the default (docs/svgf.md: Defaults)
+  CHECK(params({"--antilag", "off"}).antilag == Antilag::Off);
+  CHECK(params({"--gradient-lambda-radius", "2"}).gradient_lambda_radius == 2);
+  REQUIRE_THROWS_WITH(params({"--gradient-lambda-radius", "4"}),
+                      Catch::Contains("--gradient-lambda-radius"));
   REQUIRE_THROWS_WITH(params({"--antilag", "yes"}),
                       Catch::Contains("--antilag") && Catch::Contains("off, statistics (or on) or gradient"));
   REQUIRE_THROWS_WITH(params({"--gradient-iterations", "9"}), Catch::Contains("--gradient-iterations"));

@@ -97,4 +97,15 @@ TEST_CASE("lighting change: lag", "[metrics]") {
   // Back at once: 0.
   REQUIRE(lag_frames({-20, -20, -20, -19.5}, 3) == 0);
   REQUIRE_THROWS(lag_frames(err, 2, 3));
+
+  // Against the restart baseline: frame 3 + k is held to frame k's error. A history that was
+  // still converging (-10, -14, -16) and restarts at the change (-9, -13.5, -16) lags 1 frame;
+  // one that keeps the old light (-5, -7, -9) never gets back.
+  const std::vector<double> restarted = {-10, -14, -16, -9, -13.5, -16};
+  const std::vector<double> base = restart_baseline(restarted, 3);
+  REQUIRE(base == std::vector<double>{-10, -14, -16, -10, -14, -16});
+  REQUIRE(lag_frames(restarted, base, 3) == 0);  // -9 <= -10 + 1
+  REQUIRE(lag_frames(restarted, base, 3, 0.5) == 1);
+  const std::vector<double> kept = {-10, -14, -16, -5, -7, -9};
+  REQUIRE(lag_frames(kept, restart_baseline(kept, 3), 3) == -1);
 }

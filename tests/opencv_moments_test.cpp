@@ -108,7 +108,7 @@ void static_sequence_equals_meanstddev(const TestDevice& device) {
     }
 
     // alpha = 0 and a cap above N: the blend factor is 1/n, an exact running mean.
-    SvgfParams p;
+    SvgfParams p = svgf_preset("falcor");  // the sample variance, no anti-lag
     p.alpha = 0.f;
     p.moments_alpha = 0.f;
     p.history_cap = 1000;
@@ -177,7 +177,7 @@ void check_spatial_variance(const TestDevice& device, Driver driver, const Frame
   const int w = acc.width(), h = acc.height();
   // Unit weights with random guides: no luminance or depth term (phi = inf: |d| / inf = 0;
   // at the centre 0 * inf = NaN, which the weight drops) and pow(., 0) = 1 for the normals.
-  SvgfParams p;
+  SvgfParams p = svgf_preset("falcor");  // the sample variance
   p.phi_color = std::numeric_limits<float>::infinity();
   p.spatial_variance_phi_depth = std::numeric_limits<float>::infinity();
   p.phi_normal = 0.f;

@@ -33,10 +33,10 @@ namespace {
 constexpr int kWarmup = 4;
 // Frames denoised per fixture sequence, a bound on the runtime only.
 constexpr int kMaxFixtureFrames = 32;
-// Issue 12's anti-lag scenes: the default SVGF lags behind their changes of lighting (a light
-// switched off, a moving shadow) and loses to bilateralFilter there (docs/opencv-checks.md).
-// Measured and printed, not enforced, until the anti-lag of issue 12 is in: then remove them.
-const std::vector<std::string> kNotEnforcedYet = {"light-switch", "moving-shadow"};
+// Fixtures where the check is measured and printed but not enforced; empty since the defaults
+// follow changes of lighting (issue 12: A-SVGF's anti-lag), which Falcor's did not on
+// light-switch and moving-shadow (docs/opencv-checks.md).
+const std::vector<std::string> kNotEnforcedYet = {};
 
 struct Sequence {
   std::string name;

@@ -24,12 +24,14 @@ using namespace svgf;
 
 namespace {
 
-// The documented defaults (docs/svgf.md), written out.
+// The documented values (docs/svgf.md), written out: the defaults, and where the defaults moved
+// away from Falcor's (issue 12), Falcor's, which the stage pins below run with
+// svgf_preset("falcor").
 constexpr double kAlbedoEpsilon = 1e-3;
-constexpr double kAlpha = 0.05;
+constexpr double kAlpha = 0.05;  // Falcor's; the default is 0.03
 constexpr double kMomentsAlpha = 0.2;
 constexpr double kReprojectMinWeight = 0.01;
-constexpr double kPhiColor = 10;
+constexpr double kPhiColor = 10;  // Falcor's; the default is 4
 constexpr double kPhiNormal = 128;
 constexpr double kPhiDepth = 1;
 constexpr double kVarianceEpsilon = 1e-4;
@@ -112,7 +114,7 @@ TEST_CASE("params: a-trous with default parameters against a double reference of
   };
   for (int step : {1, 2}) {
     cpu::for_each_pixel(w, h, AtrousKernel{f.guides(), {in.rgb(), in.plane(3)},
-                                           {out.rgb(), out.plane(3)}, step, SvgfParams()});
+                                           {out.rgb(), out.plane(3)}, step, svgf_preset("falcor")});
     double worst = 0;
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) {
@@ -153,10 +155,13 @@ TEST_CASE("params: every SvgfParams and GaussianParams default is its documented
   // gradients below 1e-8).
   const SvgfParams p;
   CHECK(p.albedo_epsilon == 1e-3f);
-  CHECK(p.alpha == 0.05f);
+  CHECK(p.alpha == 0.03f);
   CHECK(p.moments_alpha == 0.2f);
-  CHECK(p.history_cap == 32);
-  CHECK_FALSE(p.variance_of_mean);
+  CHECK(p.history_cap == 64);
+  CHECK(p.variance_of_mean);
+  CHECK(p.antilag == Antilag::Gradient);
+  CHECK(p.gradient_iterations == 1);
+  CHECK(p.gradient_lambda_radius == 1);
   CHECK(p.reproject_depth_gradient_scale == 10.f);
   CHECK(p.reproject_depth_relative == 0.03f);
   CHECK(p.reproject_normal_cos == 0.9f);
@@ -165,8 +170,8 @@ TEST_CASE("params: every SvgfParams and GaussianParams default is its documented
   CHECK(p.spatial_variance_radius == 3);
   CHECK(p.spatial_variance_phi_depth == 3.f);
   CHECK(p.iterations == 4);
-  CHECK(p.feedback_tap == 1);
-  CHECK(p.phi_color == 10.f);
+  CHECK(p.feedback_tap == -1);
+  CHECK(p.phi_color == 4.f);
   CHECK(p.phi_normal == 128.f);
   CHECK(p.phi_depth == 1.f);
   CHECK(p.variance_epsilon == 1e-4f);
@@ -196,6 +201,7 @@ float history_after(float fwidth, float prev_depth, Vec3 prev_normal) {
   Image illum(w, h, 3, 0.5f), prev_color(w, h, 3, 0.5f), prev_moments(w, h, 2, 0.25f),
       prev_history(w, h, 1, 1.f), accumulated(w, h, 4), moments(w, h, 2), history(w, h, 1);
   ReprojectKernel k;
+  k.params = svgf_preset("falcor");  // Falcor's documented values, no anti-lag
   k.guides = cur.guides();
   k.prev_guides = prev.guides();
   k.illumination = illum.rgb();
@@ -264,6 +270,7 @@ ReprojectRun reproject_once(int w, int h, float c, float prev_c, float prev_m1, 
   }
   ReprojectRun r{Image(w, h, 4), Image(w, h, 2), Image(w, h, 1)};
   ReprojectKernel k;
+  k.params = svgf_preset("falcor");  // Falcor's documented values, no anti-lag
   k.guides = cur.guides();
   k.prev_guides = prev.guides();
   k.illumination = illum.rgb();
@@ -359,7 +366,19 @@ TEST_CASE("params: the paper's, Falcor's and the converging configurations by na
   CHECK(converge.alpha == 0.03f);
   CHECK(converge.history_cap == 64);
   CHECK(converge.variance_of_mean);
-  // The rest are the defaults; "default" is SvgfParams().
+  CHECK(converge.antilag == Antilag::Off);
+  CHECK(paper.antilag == Antilag::Off);
+  CHECK(falcor.antilag == Antilag::Off);
+  CHECK(falcor.gradient_iterations == 3);
+  // The defaults are "converge" with A-SVGF's anti-lag (docs/svgf.md: Defaults); "default" is
+  // SvgfParams().
+  const SvgfParams def;
+  CHECK(def.antilag == Antilag::Gradient);
+  CHECK(def.gradient_iterations == 1);
+  CHECK(def.gradient_lambda_radius == 1);
+  CHECK((def.feedback_tap == converge.feedback_tap && def.phi_color == converge.phi_color &&
+         def.alpha == converge.alpha && def.history_cap == converge.history_cap &&
+         def.variance_of_mean == converge.variance_of_mean));
   CHECK(converge.phi_normal == SvgfParams().phi_normal);
   CHECK(converge.moments_alpha == SvgfParams().moments_alpha);
   CHECK(svgf_preset("default").feedback_tap == SvgfParams().feedback_tap);

@@ -167,22 +167,26 @@ void reset_restarts_history(const TestDevice& device) {
   REQUIRE(d->read_buffer(svgf_buffer::kHistoryLength).at(1, 1, 0) == 1.f);
 }
 
-void defaults_are_falcors(const TestDevice& device) {
+void defaults_are_documented(const TestDevice& device) {
   // The documented defaults (methods/svgf/params.h, docs/svgf.md), written out here, not read
   // from the header...
-  SvgfParams falcor;
-  falcor.iterations = 4;
-  falcor.feedback_tap = 1;
-  falcor.phi_color = 10.f;
-  falcor.phi_normal = 128.f;
-  falcor.phi_depth = 1.f;
-  falcor.alpha = 0.05f;
-  falcor.moments_alpha = 0.2f;
-  falcor.history_cap = 32;
-  falcor.spatial_variance_history = 4;
-  falcor.spatial_variance_radius = 3;
-  falcor.spatial_variance_phi_depth = 3.f;
-  falcor.reproject_min_weight = 0.01f;
+  SvgfParams documented;
+  documented.iterations = 4;
+  documented.feedback_tap = -1;
+  documented.phi_color = 4.f;
+  documented.phi_normal = 128.f;
+  documented.phi_depth = 1.f;
+  documented.alpha = 0.03f;
+  documented.moments_alpha = 0.2f;
+  documented.history_cap = 64;
+  documented.variance_of_mean = true;
+  documented.antilag = Antilag::Gradient;
+  documented.gradient_iterations = 1;
+  documented.gradient_lambda_radius = 1;
+  documented.spatial_variance_history = 4;
+  documented.spatial_variance_radius = 3;
+  documented.spatial_variance_phi_depth = 3.f;
+  documented.reproject_min_weight = 0.01f;
   // ...and a default-configured denoiser gives the same bits as one given those values by
   // hand, while moving any one of them changes the output: the pipeline reads what the
   // configuration holds, and each default is the value it is documented to be.
@@ -203,7 +207,7 @@ void defaults_are_falcors(const TestDevice& device) {
   };
   DenoiserConfig by_default = config_for(device);
   DenoiserConfig by_hand = config_for(device);
-  by_hand.svgf = falcor;
+  by_hand.svgf = documented;
   auto a = make_denoiser(by_default);
   auto b = make_denoiser(by_hand);
   const auto out_a = denoise_sequence(*a, scene, 8, bumps);
@@ -310,8 +314,8 @@ SVGF_DEVICE_TEST("pipeline: the feedback tap is what the next frame reads", "[pi
 SVGF_DEVICE_TEST("pipeline: NaN, Inf and negative input is counted and does not poison the history",
                  "[pipeline]", bad_input_does_not_poison)
 SVGF_DEVICE_TEST("pipeline: reset() restarts the history", "[pipeline]", reset_restarts_history)
-SVGF_DEVICE_TEST("pipeline: the defaults are Falcor's SVGFPass values, as the pipeline uses them",
-                 "[pipeline]", defaults_are_falcors)
+SVGF_DEVICE_TEST("pipeline: the defaults are their documented values, as the pipeline uses them",
+                 "[pipeline]", defaults_are_documented)
 SVGF_DEVICE_TEST("pipeline: phi_depth 0 means no depth term, in the a-trous and the variance stages",
                  "[pipeline]", phi_depth_zero_is_no_depth_term)
 

@@ -23,7 +23,8 @@ struct ReprojectRig {
   Frame prev_frame, cur_frame;
   Image illum, prev_color, moments_prev, history_prev, accumulated, moments, history;
   bool has_history = false;
-  SvgfParams params;
+  // Falcor's values (alpha 0.05, cap 32), no anti-lag: the stage's own rules.
+  SvgfParams params = svgf_preset("falcor");
 
   ReprojectRig(const test::TestDevice& d, int w_, int h_)
       : device(d), w(w_), h(h_), prev_frame(test::flat_frame(w_, h_)), cur_frame(test::flat_frame(w_, h_)),

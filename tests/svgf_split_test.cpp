@@ -132,10 +132,13 @@ struct EdgeScene {
 
 void split_keeps_direct_edges(const TestDevice& device) {
   const EdgeScene scene;
-  // The unfiltered accumulation fed back, so the history holds the edge as rendered; 6 frames,
-  // so the last filters with the temporal variance (history >= 4).
+  // Falcor's values (the sample variance, phi_color 10: the single signal's filter is wide
+  // enough to show the blur) with the unfiltered accumulation fed back, so the history holds the
+  // edge as rendered; 6 frames, so the last filters with the temporal variance (history >= 4).
   const auto run = [&](SplitMode split) {
     DenoiserConfig c = split_config(device, split);
+    c.svgf = svgf_preset("falcor");
+    c.svgf.split = split;
     c.svgf.feedback_tap = -1;
     auto d = make_denoiser(c);
     Image out;

@@ -44,10 +44,12 @@ struct SvgfParams {
   float albedo_epsilon = 1e-3f;
 
   // Temporal accumulation (paper Sec. 4.1): exponential moving average with factor
-  // max(alpha, 1/history) so the first frames are a plain mean. The paper blends with 0.2.
-  float alpha = 0.05f;
+  // max(alpha, 1/history) so the first frames are a plain mean. The paper blends with 0.2,
+  // Falcor with 0.05 and a cap of 32; the longer average (0.03, 64) takes out the last
+  // frame-to-frame drops on a static scene (docs/svgf.md: Static convergence).
+  float alpha = 0.03f;
   float moments_alpha = 0.2f;
-  int history_cap = 32;
+  int history_cap = 64;
 
   // A new sample's luminance is clamped to the history's mean + outlier_sigma standard
   // deviations before it enters the color (methods/svgf/reproject.h); 0: no clamp.
@@ -58,8 +60,9 @@ struct SvgfParams {
   // (2 antilag_radius + 1)^2 neighbourhood loses a share of its length, all of it from
   // antilag_high on. antilag_relative (of the luminance, at least antilag_floor) widens the
   // tolerance for the bias reprojection and filtering leave. 5x5 and 4..8 fire far less on
-  // still pixels than 3x3 and 3..6 (docs/svgf.md: Anti-lag).
-  Antilag antilag = Antilag::Off;
+  // still pixels than 3x3 and 3..6 (docs/svgf.md: Anti-lag). The default is A-SVGF's
+  // gradients, with this rule on frames that carry none (docs/svgf.md: Defaults).
+  Antilag antilag = Antilag::Gradient;
   int antilag_radius = 2;
   float antilag_low = 4.f;
   float antilag_high = 8.f;
@@ -75,10 +78,11 @@ struct SvgfParams {
 
   // A-SVGF (Schied et al. 2018; methods/svgf/gradient.h, docs/svgf.md): the per-stratum
   // temporal gradients are filtered by gradient_iterations a-trous steps of 3x3 taps, 1, 2, 4,
-  // ... strata apart (Schied's reference code: 3x3 box taps, 5 iterations; 3 reach 7 strata,
-  // 21 pixels), edge-stopped by mesh id, depth and normal at each stratum's sample with SVGF's
-  // own tolerances (phi_depth 1, phi_normal 128), then drive alpha' = (1 - lambda) alpha + lambda.
-  int gradient_iterations = 3;
+  // ... strata apart (Schied's reference code: 3x3 box taps, 5 iterations), edge-stopped by
+  // mesh id, depth and normal at each stratum's sample with SVGF's own tolerances (phi_depth 1,
+  // phi_normal 128), then drive alpha' = (1 - lambda) alpha + lambda. One step: more average
+  // a moving shadow's edge away (3 steps reach 21 pixels; docs/svgf.md: Defaults).
+  int gradient_iterations = 1;
   float gradient_phi_depth = 1.f;
   float gradient_phi_normal = 128.f;
   // A pixel's lambda is the largest of the strata within gradient_lambda_radius of its own
@@ -101,16 +105,16 @@ struct SvgfParams {
   // about n = min(history, (2 - alpha) / alpha) accumulated samples (methods/svgf/variance.h),
   // so the luminance edge-stopping tightens as the history grows and the spatial filter steps
   // back on converged pixels. Off: the sample variance itself, as in the paper and Falcor.
-  bool variance_of_mean = false;
+  bool variance_of_mean = true;
 
   // Edge-stopping functions of the a-trous filter (paper Eq. 3-4).
   int iterations = 4;     // Falcor: 4; the paper uses 5
   // Iteration whose output is the next frame's color history; -1: none (the unfiltered
   // accumulation is fed back). The paper feeds back iteration 0, Falcor iteration 1; both
   // re-blur the history every frame, so a static scene loses detail frame after frame
-  // (docs/svgf.md: Static convergence).
-  int feedback_tap = 1;
-  float phi_color = 10.f;  // the paper's sigma_l is 4
+  // (docs/svgf.md: Static convergence); ours feeds back the unfiltered accumulation.
+  int feedback_tap = -1;
+  float phi_color = 4.f;  // the paper's sigma_l; Falcor's is 10
   float phi_normal = 128.f;
   float phi_depth = 1.f;
   float variance_epsilon = 1e-4f;  // added under the square root of the luminance sigma
@@ -205,33 +209,36 @@ struct SvgfParams {
 };
 
 // Named configurations (--svgf-preset):
-//   "default"   the defaults above (Falcor's values);
+//   "default"   the defaults above: "converge" with A-SVGF's anti-lag (docs/svgf.md: Defaults);
 //   "falcor"    Falcor's SVGFPass: 4 iterations, feedback tap 1, phi_color 10, alpha 0.05,
-//               history cap 32 (today the same as "default");
-//   "paper"     Schied et al. 2017: 5 iterations, tap 0, sigma_l 4, alpha 0.2;
-//   "converge"  what makes a static scene converge (docs/svgf.md: Static convergence): the
-//               unfiltered accumulation fed back (tap -1), the variance of the mean, sigma_l 4,
-//               a longer average (alpha 0.03, cap 64). It keeps a one-frame outlier in its
-//               history far longer than the filtered feedback does, which is why it is not yet
-//               the default (issue 12: anti-lag).
+//               history cap 32, the sample variance, no anti-lag (the defaults until issue 12);
+//   "paper"     Schied et al. 2017: Falcor's with 5 iterations, tap 0, sigma_l 4, alpha 0.2;
+//   "converge"  the defaults without the anti-lag: what makes a static scene converge
+//               (docs/svgf.md: Static convergence), the unfiltered accumulation fed back (tap
+//               -1), the variance of the mean, sigma_l 4, alpha 0.03, cap 64; alone it keeps a
+//               one-frame outlier or a change of light in its history for many frames.
 // Throws std::invalid_argument naming the choices.
 inline SvgfParams svgf_preset(const std::string& name) {
   SvgfParams p;
-  if (name == "default" || name == "falcor") return p;
+  if (name == "default") return p;
+  if (name == "converge") {
+    p.antilag = Antilag::Off;
+    return p;
+  }
+  p.feedback_tap = 1;
+  p.variance_of_mean = false;
+  p.phi_color = 10.f;
+  p.alpha = 0.05f;
+  p.history_cap = 32;
+  p.antilag = Antilag::Off;
+  p.gradient_iterations = 3;
+  if (name == "falcor") return p;
   if (name == "paper") {
     p.iterations = 5;
     p.feedback_tap = 0;
     p.phi_color = 4.f;
     p.alpha = 0.2f;
     p.moments_alpha = 0.2f;
-    return p;
-  }
-  if (name == "converge") {
-    p.feedback_tap = -1;
-    p.variance_of_mean = true;
-    p.phi_color = 4.f;
-    p.alpha = 0.03f;
-    p.history_cap = 64;
     return p;
   }
   throw std::invalid_argument("svgf: --svgf-preset must be default, falcor, paper or converge, got '" +
