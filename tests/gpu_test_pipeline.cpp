@@ -114,28 +114,34 @@ void count_values(const Image& im) { tally().frame_values += static_cast<int64_t
 
 TEST_CASE("pipeline: CPU vs CUDA exact bitwise over whole sequences; fast within tolerance",
           "[pipeline][fixture]") {
-  // The defaults, and the converging configuration with the anti-lag (its neighbourhood reads
-  // and the variance of the mean) on every fixture too.
+  // The defaults (A-SVGF's gradients on the sequences with gradient samples, the statistics
+  // anti-lag on the others), Falcor's values (the defaults until issue 12), and the converging
+  // configuration with the statistics anti-lag on every fixture too.
   SvgfParams converge = svgf_preset("converge");
   converge.antilag = Antilag::Statistics;
-  // A-SVGF, with TAA after it: only the sequences with gradient samples (the synthetic one,
-  // moving-shadow, light-switch).
-  SvgfParams gradient;
-  gradient.antilag = Antilag::Gradient;
-  gradient.taa = true;
+  // The defaults with TAA after them: only the sequences with gradient samples (the synthetic
+  // one, moving-shadow, light-switch).
+  SvgfParams taa;
+  taa.taa = true;
   // And direct and indirect filtered apart (the frames' color split below), the indirect part
   // with a wider filter.
   SvgfParams split;
   split.split = SplitMode::On;
   split.indirect_iterations = 5;
   split.indirect_phi_color = 20.f;
-  const std::pair<std::string, SvgfParams> settings[] = {{"defaults", SvgfParams()},
-                                                         {"converge + antilag", converge},
-                                                         {"gradient antilag + taa", gradient},
-                                                         {"split", split}};
-  for (const auto& [setting, params] : settings)
+  struct Setting {
+    std::string name;
+    SvgfParams params;
+    bool needs_gradients;
+  };
+  const Setting settings[] = {{"defaults", SvgfParams(), false},
+                              {"falcor", svgf_preset("falcor"), false},
+                              {"converge + statistics antilag", converge, false},
+                              {"defaults + taa", taa, true},
+                              {"split", split, false}};
+  for (const auto& [setting, params, needs_gradients] : settings)
   for (const Source& src : sources()) {
-    if (params.antilag == Antilag::Gradient && src.frames > 1 && src.frame(1).gradient.empty())
+    if (needs_gradients && src.frames > 1 && src.frame(1).gradient.empty())
       continue;
     tally().sequences.push_back(src.name + " (" + std::to_string(src.frames) + " frames, " +
                                 setting + ")");
