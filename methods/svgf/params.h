@@ -51,10 +51,6 @@ struct SvgfParams {
   float moments_alpha = 0.2f;
   int history_cap = 64;
 
-  // A new sample's luminance is clamped to the history's mean + outlier_sigma standard
-  // deviations before it enters the color (methods/svgf/reproject.h); 0: no clamp.
-  float outlier_sigma = 4.f;
-
   // Anti-lag from the history's disagreement with this frame (methods/svgf/reproject.h): a
   // history whose luminance lies more than antilag_low standard errors from the mean of its
   // (2 antilag_radius + 1)^2 neighbourhood loses a share of its length, all of it from
