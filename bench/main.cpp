@@ -130,6 +130,12 @@ int run_command(const RunArgs& a) {
     frames = generate_frames(a.scene, w, h, a.distinct_frames, a.cache, split);
   }
 
+  if (c.project() && c.denoiser.method == Method::Svgf &&
+      c.denoiser.svgf.antilag == Antilag::Gradient && !frames.gradient_samples())
+    std::fprintf(stderr,
+                 "svgf-bench: the frames carry no gradient samples: --antilag gradient runs the "
+                 "statistics rule\n");
+
   json doc;
   doc["suite"] = "run";
   doc["command"] = a.command;
