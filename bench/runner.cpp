@@ -42,16 +42,23 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
   const bool project = c.project(), cuda = c.cuda();
   // Bytes and operations are counted for every SVGF and BMFR stage and for the other methods'
   // filter stages (bench/stage_cost.h); a frame floor needs them all.
-  // SVGF filtering direct and indirect apart runs every stage twice; the cost model counts one
-  // signal, so such a run has none.
+  // SVGF filtering direct and indirect apart runs most stages twice; the cost model counts one
+  // signal, so such a run has its once-a-frame stages counted, and no frame floor.
   const bool split = project && c.denoiser.method == Method::Svgf &&
                      c.denoiser.svgf.split != SplitMode::Off && !fs.frames.front().direct.empty() &&
                      !fs.frames.front().indirect.empty();
-  const bool costed = project && !split;
-  const bool frame_costed = costed && frame_is_costed(c.denoiser.method);
+  const bool costed = project;
+  const bool frame_costed = costed && !split && frame_is_costed(c.denoiser.method);
   const double pixels = static_cast<double>(fs.width) * fs.height;
   const bool emission = !fs.frames.front().emission.empty();
   const double surface = fs.surface_fraction();
+  FrameTraits traits;
+  traits.emission = emission;
+  traits.gradient_samples = fs.gradient_samples();
+  traits.split = split;
+  traits.surface_fraction = surface;
+  traits.width = fs.width;
+  traits.height = fs.height;
 
   const size_t mem_before = cuda ? device_used_bytes() : 0;
   size_t mem_peak = 0;
@@ -144,8 +151,7 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
     const std::string& name = stage_names[si];
     const Summary st = summarize(stage_ms[si]);
     const std::optional<StageCost> counted =
-        costed ? method_stage_cost(c.denoiser, name, emission, surface, fs.width, fs.height)
-                : std::nullopt;
+        costed ? method_stage_cost(c.denoiser, name, traits) : std::nullopt;
     const StageCost cost = counted.value_or(StageCost{});
     if (st.max <= 0 && cost.bytes() <= 0) continue;  // not run by this backend/mode
     json e;

@@ -1,5 +1,6 @@
 // The benchmark's rendered frames carry A-SVGF's gradient samples, its cache renders again a
-// frame stored without them, and a --antilag gradient run on them times the gradient stages.
+// frame stored without them, and a --antilag gradient run on them times and costs the gradient
+// stages.
 #include <catch2/catch.hpp>
 #include <algorithm>
 #include <filesystem>
@@ -95,6 +96,9 @@ TEST_CASE("a --antilag gradient run times the three gradient stages and says the
     for (const char* stage : {svgf_stage::kGradient, svgf_stage::kGradientAtrous,
                               svgf_stage::kGradientLambda})
       CHECK(has(names, stage) == gradient);
+    // Every stage is counted (bench/stage_cost.h), so the frame has a floor.
+    for (const json& s : e["stages"]) CHECK(s.contains("bytes_read_per_px"));
+    CHECK(e["cost_model"] == "bench/stage_cost.cpp");
   }
   // Frames without the group: the benchmark says so.
   FrameSet stripped = frames;
