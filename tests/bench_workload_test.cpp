@@ -100,6 +100,26 @@ TEST_CASE("a --antilag gradient run times the three gradient stages and says the
     for (const json& s : e["stages"]) CHECK(s.contains("bytes_read_per_px"));
     CHECK(e["cost_model"] == "bench/stage_cost.cpp");
   }
+  // Direct and indirect filtered apart: the stages run once a frame are counted, the others
+  // (run once per signal) are not, and the frame has no floor.
+  {
+    RunConfig split = c;
+    split.denoiser.svgf.antilag = Antilag::Gradient;
+    split.denoiser.svgf.split = SplitMode::On;
+    split.denoiser.svgf.taa = true;
+    const json e = time_run(split, generate_frames("cornell-moving", 24, 15, 3, "", true), t,
+                            Ceilings{10.0, 1e10, "test"});
+    for (const json& s : e["stages"]) {
+      const std::string name = s["stage"].get<std::string>();
+      INFO(name);
+      const bool once = name == svgf_stage::kGradient || name == svgf_stage::kGradientAtrous ||
+                        name == svgf_stage::kGradientLambda || name == svgf_stage::kSplitSum ||
+                        name == svgf_stage::kTaa;
+      CHECK(s.contains("bytes_read_per_px") == once);
+    }
+    CHECK(has(stage_names(e), svgf_stage::kSplitSum));
+    CHECK_FALSE(e.contains("floor"));
+  }
   // Frames without the group: the benchmark says so.
   FrameSet stripped = frames;
   for (Frame& f : stripped.frames) f.gradient = Image();
