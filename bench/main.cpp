@@ -32,10 +32,12 @@ const char* const kRunFooter =
     "Times every stage of the method, by its own stage names (CUDA events on the GPU, a steady\n"
     "clock on the CPU) over --frames frames after --warmup frames, and prints per stage and per\n"
     "frame the median and p95, megapixels per second and the peak device memory; for the stages\n"
-    "the cost model counts (bench/stage_cost.cpp: every svgf and bmfr stage, the filter stage of\n"
-    "jbf, jbf-atrous and wavelet) also the bytes and operations the stage must move and do, the\n"
-    "achieved bandwidth against the measured copy bandwidth, the share of the measured float\n"
-    "rate, the floor and, for a filter's taps, the time a tap (other stages: n/a).\n"
+    "the cost model counts (bench/stage_cost.cpp: every svgf and bmfr stage, of a split svgf frame\n"
+    "those it runs once, the filter stage of jbf, jbf-atrous and wavelet) also the bytes and\n"
+    "operations the stage must move and do, the achieved bandwidth against the measured copy\n"
+    "bandwidth, the share of the measured float rate, the floor and, for a filter's taps, the time\n"
+    "a tap (other stages: n/a). The input line says whether the frames carry A-SVGF's gradient\n"
+    "samples (rendered frames do).\n"
     "`svgf-bench [options]` without a subcommand is `svgf-bench run [options]`.";
 const char* const kSuiteFooter =
     "cpu (sections sizes, chart, coverage, baselines, wavelet, jbf, bmfr, quality) or gpu\n"
@@ -129,6 +131,12 @@ int run_command(const RunArgs& a) {
     parse_size(a.size, w, h);
     frames = generate_frames(a.scene, w, h, a.distinct_frames, a.cache, split);
   }
+
+  if (c.project() && c.denoiser.method == Method::Svgf &&
+      c.denoiser.svgf.antilag == Antilag::Gradient && !frames.gradient_samples())
+    std::fprintf(stderr,
+                 "svgf-bench: the frames carry no gradient samples: --antilag gradient runs the "
+                 "statistics rule\n");
 
   json doc;
   doc["suite"] = "run";

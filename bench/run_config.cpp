@@ -30,16 +30,23 @@ std::string params_key(const DenoiserConfig& d) {
       unless_default("pd", p.phi_depth, def.phi_depth);
       unless_default("cap", static_cast<float>(p.history_cap), static_cast<float>(def.history_cap));
       if (p.variance_of_mean != def.variance_of_mean) s << (p.variance_of_mean ? " vom" : " novom");
-      // Gradient mode falls back to the statistics rule, so both carry its thresholds.
+      // The anti-lag's mode unless it is the default's (A-SVGF), then whatever of its
+      // parameters is not the default's (gradient mode falls back to the statistics rule, so
+      // both carry its thresholds).
+      if (p.antilag != def.antilag) s << " antilag-" << to_string(p.antilag);
       if (p.antilag == Antilag::Gradient) {
-        s << " asvgf" << p.gradient_iterations;
+        unless_default("gi", static_cast<float>(p.gradient_iterations),
+                       static_cast<float>(def.gradient_iterations));
         unless_default("gpd", p.gradient_phi_depth, def.gradient_phi_depth);
         unless_default("gpn", p.gradient_phi_normal, def.gradient_phi_normal);
         unless_default("glr", static_cast<float>(p.gradient_lambda_radius),
                        static_cast<float>(def.gradient_lambda_radius));
       }
-      if (p.antilag != Antilag::Off)
-        s << " antilag" << p.antilag_low << '-' << p.antilag_high << '/' << p.antilag_relative;
+      if (p.antilag != Antilag::Off) {
+        unless_default("al", p.antilag_low, def.antilag_low);
+        unless_default("ah", p.antilag_high, def.antilag_high);
+        unless_default("ar", p.antilag_relative, def.antilag_relative);
+      }
       if (p.taa) s << " taa" << p.taa_alpha;
       if (p.split != def.split) s << " split-" << to_string(p.split);
       unless_default("iit", static_cast<float>(p.indirect_iterations),

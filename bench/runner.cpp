@@ -42,16 +42,23 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
   const bool project = c.project(), cuda = c.cuda();
   // Bytes and operations are counted for every SVGF and BMFR stage and for the other methods'
   // filter stages (bench/stage_cost.h); a frame floor needs them all.
-  // SVGF filtering direct and indirect apart runs every stage twice; the cost model counts one
-  // signal, so such a run has none.
+  // SVGF filtering direct and indirect apart runs most stages twice; the cost model counts one
+  // signal, so such a run has its once-a-frame stages counted, and no frame floor.
   const bool split = project && c.denoiser.method == Method::Svgf &&
                      c.denoiser.svgf.split != SplitMode::Off && !fs.frames.front().direct.empty() &&
                      !fs.frames.front().indirect.empty();
-  const bool costed = project && !split;
-  const bool frame_costed = costed && frame_is_costed(c.denoiser.method);
+  const bool costed = project;
+  const bool frame_costed = costed && !split && frame_is_costed(c.denoiser.method);
   const double pixels = static_cast<double>(fs.width) * fs.height;
   const bool emission = !fs.frames.front().emission.empty();
   const double surface = fs.surface_fraction();
+  FrameTraits traits;
+  traits.emission = emission;
+  traits.gradient_samples = fs.gradient_samples();
+  traits.split = split;
+  traits.surface_fraction = surface;
+  traits.width = fs.width;
+  traits.height = fs.height;
 
   const size_t mem_before = cuda ? device_used_bytes() : 0;
   size_t mem_peak = 0;
@@ -126,7 +133,8 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
   j["input"] = {
       {"source", fs.source},  {"scene", fs.scene},           {"description", fs.description},
       {"width", fs.width},    {"height", fs.height},         {"pixels", pixels},
-      {"distinct_frames", n}, {"surface_fraction", surface}, {"emission", emission}};
+      {"distinct_frames", n}, {"surface_fraction", surface}, {"emission", emission},
+      {"gradient_samples", fs.gradient_samples()}};
   j["warmup"] = t.warmup;
   j["frames"] = timed;
   const Summary filter = summarize(filter_ms), wall = summarize(wall_ms);
@@ -143,8 +151,7 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
     const std::string& name = stage_names[si];
     const Summary st = summarize(stage_ms[si]);
     const std::optional<StageCost> counted =
-        costed ? method_stage_cost(c.denoiser, name, emission, surface, fs.width, fs.height)
-                : std::nullopt;
+        costed ? method_stage_cost(c.denoiser, name, traits) : std::nullopt;
     const StageCost cost = counted.value_or(StageCost{});
     if (st.max <= 0 && cost.bytes() <= 0) continue;  // not run by this backend/mode
     json e;
@@ -349,10 +356,10 @@ void print_timing(const json& e, std::FILE* f) {
                e["label"].get<std::string>().c_str(), e["description"].get<std::string>().c_str(),
                in["description"].get<std::string>().c_str(), e["frames"].get<int>(),
                e["warmup"].get<int>());
-  std::fprintf(f, "  %-12s %9s %9s %9s %8s %8s %6s %8s %9s %7s\n", "stage", "median ms", "p95 ms",
+  std::fprintf(f, "  %-15s %9s %9s %9s %8s %8s %6s %8s %9s %7s\n", "stage", "median ms", "p95 ms",
                "MP/s", "B/px", "GB/s", "%copy", "ops/px", "floor ms", "xfloor");
   for (const json& s : e["stages"]) {
-    std::fprintf(f, "  %-12s %9.3f %9.3f %9.0f", s["stage"].get<std::string>().c_str(),
+    std::fprintf(f, "  %-15s %9.3f %9.3f %9.0f", s["stage"].get<std::string>().c_str(),
                  s["ms"]["median"].get<double>(), s["ms"]["p95"].get<double>(),
                  s["mpix_per_s"].get<double>());
     if (!s.contains("bytes_read_per_px")) {  // no cost model for this method
@@ -370,7 +377,7 @@ void print_timing(const json& e, std::FILE* f) {
                    s["floor"]["ratio"].get<double>());
   }
   const json& fm = e["frame_ms"];
-  std::fprintf(f, "  %-12s %9.3f %9.3f %9.0f", "frame", fm["filter"]["median"].get<double>(),
+  std::fprintf(f, "  %-15s %9.3f %9.3f %9.0f", "frame", fm["filter"]["median"].get<double>(),
                fm["filter"]["p95"].get<double>(), e["frame_mpix_per_s"].get<double>());
   if (e.contains("floor"))
     std::fprintf(f, " %8.0f %8.1f %6s %8.0f %9.4f %7.2f", e["floor"]["bytes_per_px"].get<double>(),
@@ -379,12 +386,12 @@ void print_timing(const json& e, std::FILE* f) {
                  e["floor"]["ratio"].get<double>());
   else
     std::fprintf(f, " %8s %8s %6s %8s %9s %7s", "n/a", "n/a", "", "n/a", "n/a", "n/a");
-  std::fprintf(f, "\n  %-12s %9.3f %9.3f   (denoise() call, host clock)\n", "frame wall",
+  std::fprintf(f, "\n  %-15s %9.3f %9.3f   (denoise() call, host clock)\n", "frame wall",
                fm["wall"]["median"].get<double>(), fm["wall"]["p95"].get<double>());
   for (const json& s : e["stages"])
     if (s.contains("per_tap"))
       std::fprintf(f,
-                   "  %-12s %.0f taps/px: %.4f ns a tap, %.2f G taps/s, %.0f ops a tap, %.1f%% of "
+                   "  %-15s %.0f taps/px: %.4f ns a tap, %.2f G taps/s, %.0f ops a tap, %.1f%% of "
                    "the float ceiling\n",
                    s["stage"].get<std::string>().c_str(), s["taps_per_px"].get<double>(),
                    s["per_tap"]["ns"].get<double>(), s["per_tap"]["taps_per_s"].get<double>() / 1e9,

@@ -1,6 +1,7 @@
 // Bytes and operations per pixel of every SVGF stage, read off the functors in methods/svgf/:
 // exact mode (both backends) and the SvgfFast flavor (fast mode, methods/svgf/flavors.h), counted
-// by hand; of every BMFR stage (methods/bmfr/); and of the filter stage of the JBF (methods/jbf/)
+// by hand, A-SVGF's gradient stages (methods/svgf/gradient.h) and TAA (core/taa.h) once for both;
+// of every BMFR stage (methods/bmfr/); and of the filter stage of the JBF (methods/jbf/)
 // and of the wavelet filter (methods/wavelet/), in both modes. tests/bench_stage_cost_test.cpp
 // checks exact mode's plane counts (bytes) against the kernels; the operation counts, and
 // everything of fast mode, are not checked (see stage_cost.h). Conventions (docs/benchmarks.md):
@@ -66,6 +67,54 @@ constexpr double kRemodulate = 6;
 // With emission planes, demodulate's subtraction and clamp: 3 + 3.
 constexpr double kEmission = 6;
 
+// --- the anti-lag in the reprojection (reproject.h), a surface pixel with history ------------
+// A-SVGF: lambda < 1 and > 0 tests 2, the two alpha' = min(1, (1 - lambda) alpha + lambda) 8,
+// the length min(length, 1 / alpha') 2.
+constexpr double kLambdaBlend = 12;
+// The statistics rule (history_discrepancy, antilag_drop) over the (2r + 1)^2 neighbourhood, N
+// pixels: per pixel the mesh and surface tests 2, the count, sum and sum of squares 4; per
+// neighbour but the centre its luminance again, demodulated (emission subtracted 3, max 3, the
+// albedo clamp 3, divisions 3) 12 and luminance 5; then the mean 1, the spread (n > 1, the
+// product, difference, max, division) 5, the history's luminance 5, the tolerance (two
+// divisions, max, sum, sqrt, two max, product, sum) 9, |difference| / tolerance 3; the drop
+// (test, (d - low) / (high - low) 3, min) 5; the length scaled by 1 - drop and tested 3.
+double statistics_antilag_ops(int radius) {
+  const int n = (2 * radius + 1) * (2 * radius + 1);
+  return n * 6.0 + (n - 1) * (12.0 + kLuminance) + 1 + 5 + kLuminance + 9 + 3 + 5 + 3;
+}
+
+// --- A-SVGF's gradient stages (gradient.h), per stratum; exact arithmetic in every mode -------
+// Samples: the mask tests up to the sample (5 on average; a stratum without one: all 9), the
+// two radiance tests 4 (>= 0, <= max), delta 1, the normalizer's max 1, the weight select and
+// the guide offset's conversion 2.
+constexpr double kGradientSamples = 5 + 4 + 1 + 1 + 2;  // 13
+constexpr double kGradientSamplesNone = 9 + 1;
+// A-trous step: the centre's fwidth (2 abs, max) 3 and 1 / phi_z (test, max, product,
+// division) 4; per neighbour tap with data the weight test 1, tap_depth_scale (2 conversions,
+// 2 products, sum, sqrt, division, product) 8, the edge-stopping weight 52 and the accumulation
+// (weight sum 1, delta and normalizer mul + add 4) 5; the centre tap the test and accumulation
+// 6; the normalization (test, 2 divisions, 2 selects) 5. A stratum without data: the centre's
+// 7, nine weight tests, the normalization.
+constexpr int kGradientTaps = 8;
+constexpr double kGradientAtrousTap = 1 + 8 + kExactEdgeWeight + 5;  // 66
+constexpr double kGradientAtrousStratum = 7 + kGradientTaps * kGradientAtrousTap + 6 + 5;  // 546
+constexpr double kGradientAtrousNone = 7 + 9 + 5;
+// Lambda: the weight test, the normalizer test, |delta|, the division, the min 5; without data
+// the weight test. It is taken over the (2r + 1)^2 strata around (gradient_lambda_radius), each
+// with its bounds test 4 and the max 1; their data come through the cache, so the bytes stay
+// one stratum's.
+constexpr double kGradientLambda = 5;
+constexpr double kGradientLambdaNone = 1;
+constexpr double kGradientLambdaNeighbour = 4 + 1;
+
+// --- TAA (core/taa.h), a pixel with history -------------------------------------------------
+// x + motion with conversions 4; the bilinear taps' position 6; per tap its weight 2, the total
+// 1, the weighted history 6 (4 x 9); the total test 1; per 3x3 neighbour YCoCg 9 and the box's
+// min and max 6, for the five of the cross their min and max 6 (165); the bounds' midpoints
+// 2 x 6; the history's division by the total 3 and YCoCg 9; the clamp 6; back to RGB 8; the
+// blend (c alpha 3, 1 - alpha 1, clamped (1 - alpha) 3, sum 3, max 3) 13.
+constexpr double kTaa = 4 + 6 + 4 * 9 + 1 + (9 * (9 + 6) + 5 * 6) + 12 + 12 + 6 + 8 + 13;  // 263
+
 // --- fast mode (SvgfFast) -----------------------------------------------------------------
 // One tap: luminance 3 and normal dot 3 (mul + 2 FMA each), max 1, seven squarings 7, depth and
 // luminance terms 3 + 3, their sum 1, __expf 2 (scale + ex2), times normal weight 1, select 1,
@@ -101,18 +150,119 @@ StageCost download_cost() {
 }
 
 // The frame's upload to the device (kernels_cuda/cuda_backend.h): the input planes in one copy,
-// then the world positions when the method reads them.
-StageCost upload_cost(bool emission, bool position) {
+// then the world positions when the method reads them. `gradient`: the method reads the frame's
+// gradient samples, which come after the emission planes: those are sent along even when the
+// frame has none.
+StageCost upload_cost(bool emission, bool position, bool gradient = false) {
   StageCost c;
-  c.read = (15 + (emission ? 3 : 0) + (position ? 3 : 0)) * kFloat;
+  c.read = (15 + (gradient ? 3 + 3 : emission ? 3 : 0) + (position ? 3 : 0)) * kFloat;
   c.planes = std::string(
                  "host to device: color 3, albedo 3, normal 3, depth, depth dx/dy 2, motion 2, "
-                 "mesh id, emission 3 (if any)") +
+                 "mesh id, emission 3 (if any") +
+             (gradient ? " or gradient samples), gradient samples 3" : ")") +
              (position ? ", position 3" : "");
   return c;
 }
 
-StageCost exact_cost(Stage stage, const SvgfParams& p, bool emission, bool surface) {
+bool gradient_runs(const SvgfParams& p, const FrameTraits& f) {
+  return p.antilag == Antilag::Gradient && f.gradient_samples;
+}
+// The statistics rule runs where asked, and for A-SVGF on frames without samples.
+bool statistics_runs(const SvgfParams& p, const FrameTraits& f) {
+  return p.antilag == Antilag::Statistics || (p.antilag == Antilag::Gradient && !f.gradient_samples);
+}
+
+// What the anti-lag adds to the reprojection of a surface pixel. `inputs_read`: the stage does
+// not read this frame's color, albedo and emission otherwise (exact mode; fast mode's fused
+// kernel has them from the demodulation, the neighbours' from the caches).
+StageCost antilag_extra(const SvgfParams& p, const FrameTraits& f, bool surface,
+                        bool inputs_read) {
+  StageCost c;
+  if (!surface) return c;  // no history: neither rule looks
+  if (gradient_runs(p, f)) {
+    c.read = strata_per_px(f.width, f.height) * kFloat;  // lambda, a value a stratum
+    c.ops = kLambdaBlend;
+    c.planes = ", gradient: lambda a stratum";
+  } else if (statistics_runs(p, f)) {
+    c.read = inputs_read ? 0 : (3 + 3 + (f.emission ? 3 : 0)) * kFloat;
+    c.ops = statistics_antilag_ops(p.antilag_radius);
+    c.planes = inputs_read ? ", statistics: the neighbourhood's color, albedo, emission (cached)"
+                           : ", statistics: color 3, albedo 3, emission 3 (if any)";
+  }
+  return c;
+}
+
+StageCost plus(StageCost a, const StageCost& b) {
+  a.read += b.read;
+  a.written += b.written;
+  a.ops += b.ops;
+  a.taps += b.taps;
+  a.planes += b.planes;
+  return a;
+}
+
+// The stages both modes run the same functors for: A-SVGF's three (per stratum, scaled by the
+// strata a pixel), split_sum and TAA. Zero where the configuration does not run them.
+StageCost shared_cost(Stage stage, const SvgfParams& p, const FrameTraits& f, bool surface) {
+  const double r = strata_per_px(f.width, f.height);
+  StageCost c;
+  switch (stage) {
+    case Stage::Gradient:
+      if (!gradient_runs(p, f)) break;
+      // The mask at the stratum's 9 pixels (the scan stops at its sample, but they share its
+      // cache lines); the sample's previous and current luminance; the stratum's delta,
+      // normalizer, weight and guide offset written.
+      c.read = (9 + (surface ? 2 : 0)) * r * kFloat;
+      c.written = 4 * r * kFloat;
+      c.ops = (surface ? kGradientSamples : kGradientSamplesNone) * r;
+      c.planes =
+          "per stratum R mask at its 9 pixels, previous and current at the sample (no sample: "
+          "the mask); W delta, normalizer, weight, guide offset";
+      break;
+    case Stage::GradientAtrous: {
+      if (!gradient_runs(p, f)) break;
+      // Per step and stratum: delta, normalizer, weight, guide offset and its guide pixel's
+      // depth, depth dx/dy, normal 3, mesh id (the taps' are their strata's own); without data
+      // in reach the delta and normalizer are not read. 3 written.
+      const int n = p.gradient_iterations;
+      c.read = n * (surface ? 11 : 9) * r * kFloat;
+      c.written = n * 3 * r * kFloat;
+      c.ops = n * (surface ? kGradientAtrousStratum : kGradientAtrousNone) * r;
+      c.taps = surface ? n * kGradientTaps * r : 0;
+      c.planes =
+          "per step and stratum R delta, normalizer, weight, guide offset, its pixel's depth, "
+          "depth dx/dy 2, normal 3, mesh id (no data: not delta, normalizer); W delta, "
+          "normalizer, weight";
+      break;
+    }
+    case Stage::GradientLambda:
+      if (!gradient_runs(p, f)) break;
+      c.read = (surface ? 3 : 1) * r * kFloat;
+      c.written = r * kFloat;
+      {
+        const double taps = (2.0 * p.gradient_lambda_radius + 1) * (2 * p.gradient_lambda_radius + 1);
+        c.ops = taps * ((surface ? kGradientLambda : kGradientLambdaNone) + kGradientLambdaNeighbour) * r;
+      }
+      c.planes = "per stratum R weight, delta, normalizer (no data: weight); W lambda";
+      break;
+    case Stage::SplitSum:
+      if (!f.split) break;
+      c.read = (3 + 3) * kFloat;
+      c.written = 3 * kFloat;
+      c.ops = 3;
+      c.planes = "R direct's output 3, indirect's 3; W output 3 (in place)";
+      break;
+    case Stage::Taa:
+      if (p.taa) c = taa_cost();
+      break;
+    default:
+      break;
+  }
+  return c;
+}
+
+StageCost exact_cost(Stage stage, const SvgfParams& p, const FrameTraits& f, bool surface) {
+  const bool emission = f.emission;
   const double e = emission ? 3 : 0;  // emission planes, when the frames have them
   StageCost c;
   switch (stage) {
@@ -134,6 +284,7 @@ StageCost exact_cost(Stage stage, const SvgfParams& p, bool emission, bool surfa
       c.planes =
           "R guides 9, illumination 3, previous guides 5, history 6 (background: depth, "
           "illumination); W accumulated 4, moments 2, length 1";
+      c = plus(c, antilag_extra(p, f, surface, false));
       break;
     case Stage::Variance:
       // The history length alone sends an old surface pixel down the pass-through (the guides
@@ -172,7 +323,8 @@ StageCost exact_cost(Stage stage, const SvgfParams& p, bool emission, bool surfa
   return c;
 }
 
-StageCost fast_cost(Stage stage, const SvgfParams& p, bool emission, bool surface) {
+StageCost fast_cost(Stage stage, const SvgfParams& p, const FrameTraits& f, bool surface) {
+  const bool emission = f.emission;
   const double e = emission ? 3 : 0;
   StageCost c;
   switch (stage) {
@@ -189,6 +341,7 @@ StageCost fast_cost(Stage stage, const SvgfParams& p, bool emission, bool surfac
           "R color 3, albedo 3, emission 3 (if any), guides 9, previous guides 5, history 6 "
           "(background: depth, normal); W illumination 3, accumulated 4, moments 2, length 1, "
           "packed guides 4";
+      c = plus(c, antilag_extra(p, f, surface, true));
       break;
     case Stage::Variance:  // the same functor as exact mode's: guides on background only
       c.read = (1 + 4 + (surface ? 0 : 4)) * kFloat;  // length, accumulated, (packed guides)
@@ -231,9 +384,19 @@ StageCost fast_cost(Stage stage, const SvgfParams& p, bool emission, bool surfac
   return c;
 }
 
-StageCost pixel_cost(Mode mode, Stage stage, const SvgfParams& p, bool emission, bool surface) {
-  return mode == Mode::Fast ? fast_cost(stage, p, emission, surface)
-                            : exact_cost(stage, p, emission, surface);
+StageCost pixel_cost(Mode mode, Stage stage, const SvgfParams& p, const FrameTraits& f,
+                     bool surface) {
+  switch (stage) {
+    case Stage::Gradient:
+    case Stage::GradientAtrous:
+    case Stage::GradientLambda:
+    case Stage::SplitSum:
+    case Stage::Taa:
+      return shared_cost(stage, p, f, surface);
+    default:
+      return mode == Mode::Fast ? fast_cost(stage, p, f, surface)
+                                : exact_cost(stage, p, f, surface);
+  }
 }
 
 // A surface pixel's cost `a` and a background pixel's `b`, weighted by the surface fraction.
@@ -442,23 +605,53 @@ StageCost bmfr_pixel_cost(Mode mode, const std::string& name, bool emission, boo
 
 }  // namespace
 
-StageCost stage_cost(Mode mode, Stage stage, const SvgfParams& p, bool emission,
-                     double surface_fraction) {
-  if (stage == Stage::Upload) return upload_cost(emission, false);
-  if (stage == Stage::Download) return download_cost();
-  return blend(pixel_cost(mode, stage, p, emission, true),
-               pixel_cost(mode, stage, p, emission, false), surface_fraction);
+double strata_per_px(int width, int height) {
+  if (width <= 0 || height <= 0) return 1.0 / 9.0;
+  const auto strata = [](int n) { return (n + kGradientStratum - 1) / kGradientStratum; };
+  return static_cast<double>(strata(width)) * strata(height) /
+         (static_cast<double>(width) * height);
 }
 
-StageCost frame_cost(Mode mode, const SvgfParams& p, bool emission, double surface_fraction) {
+StageCost taa_cost() {
+  StageCost c;
+  c.read = (2 + 3 + 3) * kFloat;
+  c.written = (3 + 3) * kFloat;
+  c.ops = kTaa;
+  c.planes = "R motion 2, input 3 (3x3), history 3 (bilinear); W history 3, output 3";
+  return c;
+}
+
+StageCost stage_cost(Mode mode, Stage stage, const SvgfParams& p, const FrameTraits& f) {
+  if (stage == Stage::Upload) return upload_cost(f.emission, false, gradient_runs(p, f));
+  if (stage == Stage::Download) return download_cost();
+  return blend(pixel_cost(mode, stage, p, f, true), pixel_cost(mode, stage, p, f, false),
+               f.surface_fraction);
+}
+
+StageCost stage_cost(Mode mode, Stage stage, const SvgfParams& p, bool emission,
+                     double surface_fraction) {
+  FrameTraits f;
+  f.emission = emission;
+  f.surface_fraction = surface_fraction;
+  return stage_cost(mode, stage, p, f);
+}
+
+StageCost frame_cost(Mode mode, const SvgfParams& p, const FrameTraits& f) {
   StageCost total;
   for (int s = 0; s < static_cast<int>(Stage::Upload); ++s) {
-    const StageCost c = stage_cost(mode, static_cast<Stage>(s), p, emission, surface_fraction);
+    const StageCost c = stage_cost(mode, static_cast<Stage>(s), p, f);
     total.read += c.read;
     total.written += c.written;
     total.ops += c.ops;
   }
   return total;
+}
+
+StageCost frame_cost(Mode mode, const SvgfParams& p, bool emission, double surface_fraction) {
+  FrameTraits f;
+  f.emission = emission;
+  f.surface_fraction = surface_fraction;
+  return frame_cost(mode, p, f);
 }
 
 StageCost jbf_filter_cost(Mode mode, const JbfParams& p, double surface_fraction) {
@@ -510,6 +703,7 @@ std::optional<StageCost> bmfr_stage_cost(Mode mode, const BmfrParams& p, const s
   if (name == kDownloadStage) return download_cost();
   if (name == bmfr_stage::kRegression)
     return bmfr_regression(mode, p, surface_fraction, width, height);
+  if (name == bmfr_stage::kTaa) return p.taa ? std::optional<StageCost>(taa_cost()) : std::nullopt;
   if (name != bmfr_stage::kAccumulate && name != bmfr_stage::kWeightedSum &&
       name != bmfr_stage::kPost)
     return std::nullopt;
@@ -518,13 +712,22 @@ std::optional<StageCost> bmfr_stage_cost(Mode mode, const BmfrParams& p, const s
 }
 
 std::optional<StageCost> method_stage_cost(const DenoiserConfig& d, const std::string& name,
-                                           bool emission, double surface_fraction, int width,
-                                           int height) {
+                                           const FrameTraits& f) {
+  const bool emission = f.emission;
+  const double surface_fraction = f.surface_fraction;
+  const int width = f.width, height = f.height;
   switch (d.method) {
-    case Method::Svgf:
-      if (const std::optional<Stage> s = svgf_cost_stage(name))
-        return stage_cost(d.mode, *s, d.svgf, emission, surface_fraction);
-      return std::nullopt;
+    case Method::Svgf: {
+      const std::optional<Stage> s = svgf_cost_stage(name);
+      if (!s) return std::nullopt;
+      // A split frame runs the per-signal stages twice on other planes: counted are the stages
+      // it runs once.
+      const bool once = *s == Stage::Gradient || *s == Stage::GradientAtrous ||
+                        *s == Stage::GradientLambda || *s == Stage::SplitSum ||
+                        *s == Stage::Taa || *s == Stage::Download;
+      if (f.split && !once) return std::nullopt;
+      return stage_cost(d.mode, *s, d.svgf, f);
+    }
     case Method::Jbf:
     case Method::JbfAtrous: {
       const bool atrous = d.method == Method::JbfAtrous;

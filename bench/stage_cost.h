@@ -2,16 +2,19 @@
 // What each pipeline stage must move and compute per pixel: the one place the benchmark's
 // bandwidth, roofline floor and docs/benchmarks.md numbers come from. stage_cost.cpp lists, per
 // kernel, the planes it reads and writes (4-byte floats or mesh ids) and a hand count of its
-// floating-point operations. Counted: every SVGF stage and every BMFR stage (frame floors); of
-// the other methods the filter stage alone (the JBF's full window or a-trous levels, the
-// wavelet's a-trous passes), so they have per-stage floors and per-tap costs but no frame floor.
+// floating-point operations. Counted: every SVGF stage (A-SVGF's gradient stages, TAA and the
+// split frame's sum included) and every BMFR stage (frame floors); of the other methods the
+// filter stage alone (the JBF's full window or a-trous levels, the wavelet's a-trous passes), so
+// they have per-stage floors and per-tap costs but no frame floor. A split SVGF frame (direct and
+// indirect filtered apart) counts only the stages it runs once: the gradient stages, split_sum
+// and taa.
 //
 // Checked: exact mode's plane counts, surface and background pixel, by
 // tests/bench_stage_cost_test.cpp, which runs each stage functor on the CPU and finds the planes
 // its output depends on and the planes it stores (BMFR's regression: the planes its block's
-// weights depend on and the per-block values it stores). Not checked: the operation counts
-// (hand counts), and fast mode (SvgfFast and FastArith exist only under nvcc; their kernels are
-// counted from the same functors by hand).
+// weights depend on and the per-block values it stores; the gradient stages: per stratum). Not
+// checked: the operation counts (hand counts), and fast mode (SvgfFast and FastArith exist only
+// under nvcc; their kernels are counted from the same functors by hand).
 #include <optional>
 #include <string>
 
@@ -27,18 +30,24 @@ namespace svgf::bench {
 
 // SVGF's stages (methods/svgf/stages.h) and the CUDA engine's transfers, as the cost model
 // indexes them.
-enum class Stage : int { Sanitize = 0, Demodulate, Reproject, Variance, Atrous, Feedback,
-                         Remodulate, Upload, Download, Count };
+enum class Stage : int { Sanitize = 0, Gradient, GradientAtrous, GradientLambda, Demodulate,
+                         Reproject, Variance, Atrous, Feedback, Remodulate, SplitSum, Taa, Upload,
+                         Download, Count };
 constexpr int kStageCount = static_cast<int>(Stage::Count);
 inline const char* stage_name(Stage s) {
   switch (s) {
     case Stage::Sanitize: return kSanitizeStage;
+    case Stage::Gradient: return svgf_stage::kGradient;
+    case Stage::GradientAtrous: return svgf_stage::kGradientAtrous;
+    case Stage::GradientLambda: return svgf_stage::kGradientLambda;
     case Stage::Demodulate: return svgf_stage::kDemodulate;
     case Stage::Reproject: return svgf_stage::kReproject;
     case Stage::Variance: return svgf_stage::kVariance;
     case Stage::Atrous: return svgf_stage::kAtrous;
     case Stage::Feedback: return svgf_stage::kFeedback;
     case Stage::Remodulate: return svgf_stage::kRemodulate;
+    case Stage::SplitSum: return svgf_stage::kSplitSum;
+    case Stage::Taa: return svgf_stage::kTaa;
     case Stage::Upload: return kUploadStage;
     case Stage::Download: return kDownloadStage;
     default: return "?";
@@ -62,18 +71,43 @@ struct StageCost {
   double bytes() const { return read + written; }
 };
 
-// Cost of `stage` in one frame, all a-trous iterations together for Stage::Atrous. Upload and
-// Download give the bytes crossing the host link (their ops are 0). Fast mode (CUDA) fuses
-// stages: demodulate + reproject run as one kernel, timed and counted as Demodulate (Reproject
-// is then empty); feedback and remodulate ride on the a-trous iterations. `emission`: the frames
-// carry the optional emission planes, which demodulate subtracts and remodulate adds back.
-// `surface_fraction`: the share of pixels with a surface; background pixels (no surface) skip
-// the history, the edge-stopping taps and the planes those read, and cost much less.
+// What the frames carry and their size, where a stage's cost depends on them.
+struct FrameTraits {
+  bool emission = false;          // the optional emission planes
+  bool gradient_samples = false;  // the `gradient` group: --antilag gradient runs its stages
+  bool split = false;             // SVGF filters direct and indirect apart (split_sum runs)
+  double surface_fraction = 1.0;  // the share of pixels with a surface
+  int width = 0, height = 0;      // the stratum image's share of pixels; 0: a ninth
+};
+
+// Cost of `stage` in one frame, all a-trous iterations together for Stage::Atrous and
+// Stage::GradientAtrous. Upload and Download give the bytes crossing the host link (their ops are
+// 0). Fast mode (CUDA) fuses stages: demodulate + reproject run as one kernel, timed and counted
+// as Demodulate (Reproject is then empty); feedback and remodulate ride on the a-trous
+// iterations. `f.emission`: the frames carry the optional emission planes, which demodulate
+// subtracts and remodulate adds back. `f.surface_fraction`: the share of pixels with a surface;
+// background pixels (no surface) skip the history, the edge-stopping taps and the planes those
+// read, and cost much less (for the gradient stages: the share of strata with a sample). A stage
+// the configuration does not run costs nothing: the gradient stages without --antilag gradient
+// or without gradient samples, TAA without --svgf-taa on, split_sum on unsplit frames. The
+// gradient stages work on the stratum image, ceil(w/3) x ceil(h/3) values a plane: their counts
+// are per stratum times strata_per_px(width, height); the same functors in both modes.
+StageCost stage_cost(Mode mode, Stage stage, const SvgfParams& p, const FrameTraits& f);
+// Frames without gradient samples, not split, strata a ninth of the pixels.
 StageCost stage_cost(Mode mode, Stage stage, const SvgfParams& p, bool emission,
                      double surface_fraction);
 
 // Sum over the filtering stages (transfers excluded).
+StageCost frame_cost(Mode mode, const SvgfParams& p, const FrameTraits& f);
 StageCost frame_cost(Mode mode, const SvgfParams& p, bool emission, double surface_fraction);
+
+// Strata (A-SVGF's 3x3 pixel blocks, partial ones at the right and bottom) per pixel of a
+// width x height frame: 1/9 at 1920x1080; 1/9 for a size of 0.
+double strata_per_px(int width, int height);
+
+// TAA after remodulation (core/taa.h), the same functor for SVGF and BMFR, per pixel with
+// history.
+StageCost taa_cost();
 
 // The JBF's spatial filter in one frame (methods/jbf/filter.h): the full window of p.radius
 // (p.levels 0, stage "filter") or all p.levels a-trous levels (stage "atrous"). Background
@@ -96,12 +130,11 @@ std::optional<StageCost> bmfr_stage_cost(Mode mode, const BmfrParams& p, const s
 // grid sticks out of the image by up to a block on each side: about (w/32 + 1)(h/32 + 1) blocks).
 double bmfr_blocks_per_px(int width, int height);
 
-// The model's count of stage `name` of the configured method on width x height frames, none
-// where that stage has no model (see the top of this file). `d.jbf.levels` is the a-trous
-// form's level count as the denoiser runs it (0: the full window).
+// The model's count of stage `name` of the configured method on frames `f`, none where that
+// stage has no model (see the top of this file). `d.jbf.levels` is the a-trous form's level
+// count as the denoiser runs it (0: the full window).
 std::optional<StageCost> method_stage_cost(const DenoiserConfig& d, const std::string& name,
-                                           bool emission, double surface_fraction, int width,
-                                           int height);
+                                           const FrameTraits& f);
 // Whether every filtering stage of `m` is counted, so that its frame has a floor.
 bool frame_is_costed(Method m);
 

@@ -503,7 +503,9 @@ std::string summary_markdown(const Results& r, const std::vector<Point>& pts,
 
   // The cost model every floor above comes from.
   md << "\n## Cost model (bench/stage_cost.cpp), per pixel, default parameters (SVGF: 4 "
-        "iterations, feedback tap 1, frames with emission planes; then the other methods' filter "
+        "iterations, feedback tap 1, frames with emission planes, then each stage off by default "
+        "and the reprojection under each anti-lag, at 1920x1080 (the gradient stages: surface "
+        "column a stratum with a sample, background one without); then the other methods' filter "
         "stages; then BMFR's stages at 1920x1080, its regression a row of its blocks (1024 rows, "
         "the grid sticking out of the image: "
      << fmt(bmfr_blocks_per_px(1920, 1080) * 1024, 3)
@@ -526,6 +528,39 @@ std::string summary_markdown(const Results& r, const std::vector<Point>& pts,
     md << "| " << to_string(mode) << " | **frame (filter stages)** | " << fmt(a.read, 0) << " | "
        << fmt(a.written, 0) << " | " << fmt(a.ops, 0) << " | " << fmt(b.read, 0) << " | "
        << fmt(b.written, 0) << " | " << fmt(b.ops, 0) << " | |\n";
+    // The stages off by default, at 1920x1080 (the strata a ninth of the pixels), and the
+    // reprojection under each anti-lag (fast: the fused demodulate + reproject).
+    const Stage reproject = mode == Mode::Fast ? Stage::Demodulate : Stage::Reproject;
+    const struct {
+      Stage stage;
+      Antilag antilag;
+      const char* what;
+    } optional[] = {{Stage::Gradient, Antilag::Gradient, "--antilag gradient"},
+                    {Stage::GradientAtrous, Antilag::Gradient, "--antilag gradient, 3 steps"},
+                    {Stage::GradientLambda, Antilag::Gradient, "--antilag gradient"},
+                    {reproject, Antilag::Gradient, "--antilag gradient"},
+                    {reproject, Antilag::Statistics, "--antilag statistics, radius 2"},
+                    {Stage::SplitSum, Antilag::Off, "split frames"},
+                    {Stage::Taa, Antilag::Off, "--svgf-taa on"}};
+    for (const auto& o : optional) {
+      SvgfParams p = defaults;
+      p.antilag = o.antilag;
+      p.taa = true;
+      FrameTraits f;
+      f.emission = true;
+      f.gradient_samples = true;
+      f.split = true;
+      f.width = 1920;
+      f.height = 1080;
+      f.surface_fraction = 1.0;
+      const StageCost a = stage_cost(mode, o.stage, p, f);
+      f.surface_fraction = 0.0;
+      const StageCost b = stage_cost(mode, o.stage, p, f);
+      md << "| " << to_string(mode) << " | " << stage_name(o.stage) << " (" << o.what << ") | "
+         << fmt(a.read, 1) << " | " << fmt(a.written, 1) << " | " << fmt(a.ops, 0) << " | "
+         << fmt(b.read, 1) << " | " << fmt(b.written, 1) << " | " << fmt(b.ops, 0) << " | "
+         << a.planes << " |\n";
+    }
   }
   // The other methods' filter stages at their defaults (their other stages are not counted).
   JbfParams jbf_atrous;

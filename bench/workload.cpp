@@ -21,6 +21,11 @@ namespace svgf::bench {
 
 bool FrameSet::is_cut(int k) const { return std::find(cuts.begin(), cuts.end(), k) != cuts.end(); }
 
+bool FrameSet::gradient_samples() const {
+  return !frames.empty() && std::all_of(frames.begin(), frames.end(),
+                                        [](const Frame& f) { return !f.gradient.empty(); });
+}
+
 double FrameSet::surface_fraction() const {
   size_t surface = 0, total = 0;
   for (const Frame& f : frames) {
@@ -92,7 +97,8 @@ FrameSet load_fixture(const std::string& dir, int max_frames, bool split) {
   s.description = "fixture " + s.scene + " (" + fs::path(dir).filename().string() + "), " +
                   std::to_string(n) + " frames of " + std::to_string(s.width) + "x" +
                   std::to_string(s.height) + ", " + std::to_string(seq.manifest().spp) +
-                  " spp, reference " + std::to_string(seq.manifest().reference_spp) + " spp";
+                  " spp, reference " + std::to_string(seq.manifest().reference_spp) + " spp, " +
+                  (s.gradient_samples() ? "with" : "no") + " gradient samples";
   return s;
 }
 
@@ -119,6 +125,7 @@ FrameSet generate_frames(const std::string& scene, int width, int height, int co
   settings.spp = 1;
   settings.reference_spp = 0;
   settings.split = split;
+  settings.gradients = true;  // A-SVGF's samples, for --antilag gradient
   gbuffer::validate(settings);
   std::unique_ptr<gbuffer::Renderer> renderer;  // made only when a frame is not cached
   double render_s = 0;
@@ -134,8 +141,9 @@ FrameSet generate_frames(const std::string& scene, int width, int height, int co
                  .string();
       if (fs::exists(path)) {
         Frame f = io::read_frame(path);
-        // Older caches were written without the world positions the JBF reads: render again.
-        if (!f.position.empty()) {
+        // Older caches were written without the world positions the JBF reads, or without the
+        // gradient samples A-SVGF reads: render again.
+        if (!f.position.empty() && !f.gradient.empty()) {
           drop_unused(f, split);
           s.frames.push_back(std::move(f));
           continue;
@@ -156,8 +164,8 @@ FrameSet generate_frames(const std::string& scene, int width, int height, int co
                  scene.c_str(), width, height, render_s);
   s.source = "rendered";
   s.description = scene + " rendered by the Embree path tracer at " + std::to_string(width) + "x" +
-                  std::to_string(height) + ", 1 spp, " + std::to_string(count) +
-                  " distinct frames played cyclically";
+                  std::to_string(height) + ", 1 spp, with gradient samples, " +
+                  std::to_string(count) + " distinct frames played cyclically";
 #else
   (void)cache_dir;
   test::SyntheticScene syn;
@@ -173,8 +181,9 @@ FrameSet generate_frames(const std::string& scene, int width, int height, int co
   }
   s.source = "synthetic";
   s.description = "synthetic moving square (this build has no renderer) at " +
-                  std::to_string(width) + "x" + std::to_string(height) + ", " +
-                  std::to_string(count) + " distinct frames played cyclically";
+                  std::to_string(width) + "x" + std::to_string(height) +
+                  ", no gradient samples, " + std::to_string(count) +
+                  " distinct frames played cyclically";
 #endif
   return s;
 }

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "bench/stage_cost.h"
+#include "core/taa.h"
 #include "core/copy.h"
 #include "core/normal_weight.h"
 #include "kernels_cpu/cpu_block.h"
@@ -29,6 +30,8 @@
 #include "methods/svgf/atrous.h"
 #include "methods/svgf/demodulate.h"
 #include "methods/svgf/flavors.h"
+#include "methods/svgf/gradient.h"
+#include "methods/svgf/split_sum.h"
 #include "methods/svgf/remodulate.h"
 #include "methods/svgf/reproject.h"
 #include "methods/svgf/variance.h"
@@ -110,6 +113,26 @@ class Rig {
       if (changed) names.push_back(p.name);
     }
     return names;
+  }
+
+  // How many input values (a plane at a pixel), each changed alone, change the output at
+  // `probes`: what a kernel reads where it reads a plane at some pixels only.
+  template <class Kernel>
+  int values_read(const Kernel& k, const std::vector<Pixel>& probes) {
+    const std::vector<uint32_t> before = run(k, probes);
+    int n = 0;
+    for (Plane& p : inputs_)
+      for (size_t i = 0; i < p.f.size(); ++i) {
+        const float v = p.f[i];
+        bool changed = false;
+        for (float to : {v * 1.5f + 0.25f, 0.f, -v, 1.f - v}) {
+          p.f[i] = to;
+          changed = changed || run(k, probes) != before;
+        }
+        p.f[i] = v;
+        n += changed;
+      }
+    return n;
   }
 
   // How many of the outputs' values at `probes` the kernel stores into.
@@ -234,13 +257,29 @@ ConstIllumVarView input_illum_var(Rig& rig, const std::string& name) {
   return {rig.input_rgb(name, 0.2f, 2.f), rig.input(name + ".variance", 0.01f, 0.1f)};
 }
 
+// Frames of width x height without emission or gradient samples, `surface` of them surface.
+bench::FrameTraits frames(double surface, int width, int height) {
+  bench::FrameTraits f;
+  f.surface_fraction = surface;
+  f.width = width;
+  f.height = height;
+  return f;
+}
+
 // The counts of `stage` the model gives a pixel, in planes of 4 bytes; per iteration for the
 // a-trous.
 struct Planes {
   double read, written;
 };
+// The defaults without their anti-lag, whose reads the reprojection's own anti-lag case checks.
+SvgfParams without_antilag() {
+  SvgfParams p;
+  p.antilag = Antilag::Off;
+  return p;
+}
+
 Planes model(Stage stage, bool emission, bool surface) {
-  const SvgfParams p;
+  const SvgfParams p = without_antilag();
   const bench::StageCost c =
       bench::stage_cost(Mode::Exact, stage, p, emission, surface ? 1.0 : 0.0);
   const double per = stage == Stage::Atrous ? 4.0 * p.iterations : 4.0;
@@ -249,17 +288,23 @@ Planes model(Stage stage, bool emission, bool surface) {
 
 // The planes `k` reads and writes at the surface or background probes against the model's `m`.
 template <class Kernel>
-void require_planes(Rig& rig, const Kernel& k, const std::string& what, bool surface,
-                    const Planes& m) {
-  const std::vector<Pixel>& probes = surface ? kSurface : kBackground;
+void require_planes_at(Rig& rig, const Kernel& k, const std::string& what,
+                       const std::vector<Pixel>& probes, const Planes& m) {
   const std::vector<std::string> read = rig.read(k, probes);
   const std::vector<std::string> written = rig.written(k, probes);
   std::string r, w;
   for (const std::string& n : read) r += n + " ";
   for (const std::string& n : written) w += n + " ";
-  INFO(what << (surface ? ", surface" : ", background") << ": read " << r << "; written " << w);
-  CHECK(static_cast<double>(read.size()) == m.read);
-  CHECK(static_cast<double>(written.size()) == m.written);
+  INFO(what << ": read " << r << "; written " << w);
+  // Approx: per-stratum counts come back from bytes a pixel through the strata a pixel.
+  CHECK(static_cast<double>(read.size()) == Approx(m.read));
+  CHECK(static_cast<double>(written.size()) == Approx(m.written));
+}
+template <class Kernel>
+void require_planes(Rig& rig, const Kernel& k, const std::string& what, bool surface,
+                    const Planes& m) {
+  require_planes_at(rig, k, what + (surface ? ", surface" : ", background"),
+                    surface ? kSurface : kBackground, m);
 }
 
 template <class Kernel>
@@ -301,6 +346,7 @@ TEST_CASE("stage cost: reproject's planes are the kernel's", "[bench][stage_cost
   k.moment1 = rig.output("moment1");
   k.moment2 = rig.output("moment2");
   k.history = rig.output("history");
+  k.params = without_antilag();
   require_model(rig, k, Stage::Reproject, false, true);
   require_model(rig, k, Stage::Reproject, false, false);
 }
@@ -360,6 +406,254 @@ TEST_CASE("stage cost: remodulate's planes are the kernel's", "[bench][stage_cos
                                                              sink};
     require_model(rig, k, Stage::Remodulate, emission, true);
   }
+}
+
+// --- A-SVGF's gradient stages, the anti-lag in the reprojection, split_sum, TAA ---------------
+
+namespace {
+
+// Frames of the rig's size with gradient samples, under --antilag gradient (or `antilag`).
+bench::FrameTraits gradient_frames(double surface) {
+  bench::FrameTraits f = frames(surface, kW, kH);
+  f.gradient_samples = true;
+  return f;
+}
+SvgfParams with_antilag(Antilag antilag) {
+  SvgfParams p;
+  p.antilag = antilag;
+  return p;
+}
+// The model's count of a gradient stage, in values a stratum (a step of the a-trous).
+Planes per_stratum(Stage stage, bool surface) {
+  const SvgfParams p = with_antilag(Antilag::Gradient);
+  const bench::StageCost c = bench::stage_cost(Mode::Exact, stage, p, gradient_frames(surface));
+  const double steps = stage == Stage::GradientAtrous ? p.gradient_iterations : 1;
+  const double per = 4.0 * bench::strata_per_px(kW, kH) * steps;
+  return {c.read / per, c.written / per};
+}
+
+// The stratum image's planes lie in rig planes with a row pitch of kW strata, so that the probe
+// (sx, sy) is stratum (sx, sy). Probes stay where every tap's pixel lies in the frame.
+const std::vector<Pixel> kStratumWithData = {{5, 5}};
+const std::vector<Pixel> kStratumWithout = {{7, 6}};
+
+GradientPlanes<const float> stratum_inputs(Rig& rig, bool data) {
+  return {rig.input("delta", -0.3f, 0.3f), rig.input("normalizer", 0.5f, 1.f),
+          rig.input("weight", [data](int, int) { return data ? 1.f : 0.f; })};
+}
+
+}  // namespace
+
+TEST_CASE("stage cost: the gradient samples stage reads the mask and the sample of a stratum",
+          "[bench][stage_cost][asvgf]") {
+  for (bool data : {true, false}) {
+    CAPTURE(data);
+    const std::vector<Pixel>& probe = data ? kStratumWithData : kStratumWithout;
+    Rig rig;
+    GradientSamplesKernel k;
+    k.width = kW;
+    k.height = kH;
+    // A sample at the last pixel of every stratum but the probe's without one: the scan reads
+    // all nine mask values.
+    const Pixel none = kStratumWithout.front();
+    k.samples.mask = rig.input("mask", [&](int x, int y) {
+      const bool stratum_without = x / 3 == none.x && y / 3 == none.y;
+      return !stratum_without && x % 3 == 2 && y % 3 == 2 ? 1.f : 0.f;
+    });
+    k.samples.previous = rig.input("previous", 0.2f, 1.f);
+    k.samples.current = rig.input("current", 0.2f, 1.f);
+    k.out = {rig.output("delta"), rig.output("normalizer"), rig.output("weight")};
+    k.strata_width = kW;
+    k.guide_offset = rig.output("guide_offset");
+    const Planes m = per_stratum(Stage::Gradient, data);
+    CHECK(rig.values_read(k, probe) == Approx(m.read));
+    CHECK(static_cast<double>(rig.written(k, probe).size()) == Approx(m.written));
+  }
+}
+
+TEST_CASE("stage cost: a gradient a-trous step's planes are the kernel's, a stratum",
+          "[bench][stage_cost][asvgf]") {
+  // Strata with data only: a stratum without loads its guides before it finds no tap with data,
+  // which no change of theirs can show.
+  const SvgfParams p = with_antilag(Antilag::Gradient);
+  for (int step = 1; step < (1 << p.gradient_iterations); step *= 2) {
+    CAPTURE(step);
+    Rig rig;
+    GradientAtrousKernel k;
+    k.guides = guides(rig, "guides", false);
+    k.at = StratumGuides{kW, kW, rig.input("guide_offset", [](int x, int y) {
+                           return static_cast<float>((x + 2 * y) % 9);
+                         })};
+    k.strata_height = kH;
+    k.in = stratum_inputs(rig, true);
+    k.out = {rig.output("delta_out"), rig.output("normalizer_out"), rig.output("weight_out")};
+    k.step = step;
+    k.phi_depth = p.gradient_phi_depth;
+    k.phi_normal = p.gradient_phi_normal;
+    require_planes_at(rig, k, "gradient a-trous", kStratumWithData,
+                      per_stratum(Stage::GradientAtrous, true));
+  }
+}
+
+TEST_CASE("stage cost: the gradient lambda stage's planes are the kernel's, a stratum",
+          "[bench][stage_cost][asvgf]") {
+  for (bool data : {true, false}) {
+    Rig rig;
+    const GradientLambdaKernel k{kW, stratum_inputs(rig, data), rig.output("lambda")};
+    const std::vector<Pixel>& probe = data ? kStratumWithData : kStratumWithout;
+    const std::vector<std::string> read = rig.read(k, probe);
+    const Planes m = per_stratum(Stage::GradientLambda, data);
+    CHECK(static_cast<double>(read.size()) == Approx(m.read));
+    CHECK(static_cast<double>(rig.written(k, probe).size()) == Approx(m.written));
+  }
+}
+
+TEST_CASE("stage cost: the reprojection's anti-lag reads are the kernel's",
+          "[bench][stage_cost][asvgf]") {
+  for (Antilag antilag : {Antilag::Statistics, Antilag::Gradient}) {
+    for (bool emission : {false, true}) {
+      CAPTURE(to_string(antilag), emission);
+      Rig rig;
+      ReprojectKernel k;
+      k.guides = guides(rig, "guides", false);
+      k.prev_guides = guides(rig, "prev_guides", true);
+      k.illumination = rig.input_rgb("illumination", 0.1f, 2.f);
+      // This frame's inputs: the statistics rule reads them, A-SVGF does not.
+      k.color = rig.input_rgb("color", 0.5f, 2.f);
+      k.albedo = rig.input_rgb("albedo", 0.2f, 0.9f);
+      k.emission = emission ? rig.input_rgb("emission", 0.f, 0.2f) : ConstRgbView();
+      k.prev_color = rig.input_rgb("prev_color", 0.1f, 2.f);
+      k.prev_moment1 = rig.input("prev_moment1", 0.5f, 1.5f);
+      k.prev_moment2 = rig.input("prev_moment2", 2.5f, 3.f);
+      k.prev_history = rig.input("prev_history", [](int, int) { return 10.f; });
+      k.has_history = true;
+      // Lambda a stratum, strata_along(kW) a row.
+      if (antilag == Antilag::Gradient) k.gradient_lambda = rig.input("lambda", 0.2f, 0.5f);
+      k.accumulated = output_illum_var(rig, "accumulated");
+      k.moment1 = rig.output("moment1");
+      k.moment2 = rig.output("moment2");
+      k.history = rig.output("history");
+      k.params = with_antilag(antilag);
+      // The statistics rule drops a share of the history at any discrepancy, so that every
+      // input it reads shows in the output.
+      k.params.antilag_low = 0.f;
+      k.params.antilag_high = 1e3f;
+      bench::FrameTraits f = gradient_frames(1.0);
+      f.emission = emission;
+      const bench::StageCost c = bench::stage_cost(Mode::Exact, Stage::Reproject, k.params, f);
+      const std::vector<std::string> read = rig.read(k, kSurface);
+      const double lambda = static_cast<double>(std::count(read.begin(), read.end(), "lambda"));
+      std::string r;
+      for (const std::string& n : read) r += n + " ";
+      INFO("reproject: read " << r);
+      CHECK(c.read / 4.0 ==
+            Approx(read.size() - lambda + lambda * bench::strata_per_px(kW, kH)));
+      CHECK(c.written / 4.0 == rig.written(k, kSurface).size());
+      // Without history (background) neither rule looks: the model's count without anti-lag.
+      CHECK(bench::stage_cost(Mode::Exact, Stage::Reproject, k.params, gradient_frames(0.0)).read ==
+            bench::stage_cost(Mode::Exact, Stage::Reproject, SvgfParams(), false, 0.0).read);
+    }
+  }
+}
+
+namespace {
+
+// The split frame's sum works in place: here the direct signal's output is copied into the
+// output first, so the rig sees it read.
+struct SplitSumInPlace {
+  ConstRgbView direct;
+  SplitSumKernel sum;
+  void operator()(int x, int y) const {
+    const int i = y * kW + x;
+    sum.output.store(i, direct.load(i));
+    sum(x, y);
+  }
+};
+
+}  // namespace
+
+TEST_CASE("stage cost: split_sum's and TAA's planes are the kernel's", "[bench][stage_cost]") {
+  SvgfParams p;
+  p.taa = true;
+  bench::FrameTraits split = frames(1.0, kW, kH);
+  split.split = true;
+  {
+    Rig rig;
+    const SplitSumInPlace k{rig.input_rgb("direct", 0.f, 1.f),
+                            SplitSumKernel{kW, rig.input_rgb("indirect", 0.f, 1.f),
+                                           rig.output_rgb("output")}};
+    const bench::StageCost c = bench::stage_cost(Mode::Exact, Stage::SplitSum, p, split);
+    require_planes(rig, k, "split_sum", true, {c.read / 4.0, c.written / 4.0});
+  }
+  for (bool surface : {true, false}) {
+    Rig rig;
+    TemporalAntiAliasing k;
+    k.guides = guides(rig, "guides", false);
+    k.current = rig.input_rgb("current", 0.2f, 1.f);
+    k.history = rig.input_rgb("history", 0.2f, 1.f);
+    k.history_out = rig.output_rgb("history_out");
+    k.output = rig.output_rgb("output");
+    k.has_history = true;
+    k.alpha = p.taa_alpha;
+    for (Mode mode : {Mode::Exact, Mode::Fast}) {
+      const bench::StageCost c =
+          bench::stage_cost(mode, Stage::Taa, p, frames(surface ? 1.0 : 0.0, kW, kH));
+      require_planes(rig, k, "taa", surface, {c.read / 4.0, c.written / 4.0});
+    }
+  }
+}
+
+TEST_CASE("stage cost: a stage the configuration does not run costs nothing",
+          "[bench][stage_cost][asvgf]") {
+  // `defaults` here: no anti-lag (the defaults' own anti-lag is `gradient`).
+  const SvgfParams defaults = without_antilag(), gradient = with_antilag(Antilag::Gradient);
+  const bench::FrameTraits plain = frames(1.0, 1920, 1080), samples = [] {
+    bench::FrameTraits f = frames(1.0, 1920, 1080);
+    f.gradient_samples = true;
+    return f;
+  }();
+  for (Mode mode : {Mode::Exact, Mode::Fast}) {
+    for (Stage s : {Stage::Gradient, Stage::GradientAtrous, Stage::GradientLambda}) {
+      CHECK(bench::stage_cost(mode, s, defaults, samples).bytes() == 0);
+      CHECK(bench::stage_cost(mode, s, gradient, plain).bytes() == 0);  // no samples
+      CHECK(bench::stage_cost(mode, s, gradient, samples).bytes() > 0);
+    }
+    CHECK(bench::stage_cost(mode, Stage::Taa, defaults, plain).bytes() == 0);
+    CHECK(bench::stage_cost(mode, Stage::SplitSum, defaults, plain).bytes() == 0);
+  }
+  // At 1080p the strata are a ninth of the pixels; the a-trous counts 8 taps a stratum and step.
+  CHECK(bench::strata_per_px(1920, 1080) == Approx(1.0 / 9));
+  CHECK(bench::stage_cost(Mode::Exact, Stage::GradientAtrous, gradient, samples).taps ==
+        Approx(8.0 * gradient.gradient_iterations / 9));
+  // A-SVGF without samples falls back to the statistics rule, and its reads.
+  const SvgfParams statistics = with_antilag(Antilag::Statistics);
+  CHECK(bench::stage_cost(Mode::Exact, Stage::Reproject, gradient, plain).read ==
+        bench::stage_cost(Mode::Exact, Stage::Reproject, statistics, plain).read);
+  CHECK(bench::stage_cost(Mode::Exact, Stage::Reproject, statistics, plain).read ==
+        bench::stage_cost(Mode::Exact, Stage::Reproject, defaults, plain).read + 6 * 4);
+  // Fast mode's fused kernel has this frame's inputs already: operations only.
+  CHECK(bench::stage_cost(Mode::Fast, Stage::Demodulate, statistics, plain).read ==
+        bench::stage_cost(Mode::Fast, Stage::Demodulate, defaults, plain).read);
+  CHECK(bench::stage_cost(Mode::Fast, Stage::Demodulate, statistics, plain).ops >
+        bench::stage_cost(Mode::Fast, Stage::Demodulate, defaults, plain).ops);
+  // The CUDA upload sends the gradient samples after the emission's slot.
+  CHECK(bench::stage_cost(Mode::Fast, Stage::Upload, gradient, samples).read ==
+        bench::stage_cost(Mode::Fast, Stage::Upload, defaults, samples).read + 6 * 4);
+  // A split frame: only the stages it runs once are counted.
+  DenoiserConfig d;
+  d.svgf = gradient;
+  d.svgf.taa = true;
+  bench::FrameTraits split = samples;
+  split.split = true;
+  for (const char* stage : {svgf_stage::kGradient, svgf_stage::kGradientAtrous,
+                            svgf_stage::kGradientLambda, svgf_stage::kSplitSum, svgf_stage::kTaa})
+    CHECK(bench::method_stage_cost(d, stage, split).has_value());
+  for (const char* stage : {svgf_stage::kDemodulate, svgf_stage::kAtrous, kSanitizeStage})
+    CHECK_FALSE(bench::method_stage_cost(d, stage, split).has_value());
+  // BMFR's TAA is the same functor.
+  d.method = Method::Bmfr;
+  d.bmfr.taa = true;
+  CHECK(bench::method_stage_cost(d, bmfr_stage::kTaa, plain)->read == bench::taa_cost().read);
 }
 
 TEST_CASE("stage cost: a JBF pass's planes are the kernel's", "[bench][stage_cost][jbf]") {
@@ -441,13 +735,13 @@ TEST_CASE("stage cost: the filters' tap counts follow their footprints", "[bench
   DenoiserConfig d;
   d.method = Method::JbfAtrous;
   d.jbf.levels = 4;
-  CHECK(bench::method_stage_cost(d, "atrous", false, 1.0, kW, kH).has_value());
-  CHECK_FALSE(bench::method_stage_cost(d, "temporal", false, 1.0, kW, kH).has_value());
+  CHECK(bench::method_stage_cost(d, "atrous", frames(1.0, kW, kH)).has_value());
+  CHECK_FALSE(bench::method_stage_cost(d, "temporal", frames(1.0, kW, kH)).has_value());
   CHECK_FALSE(bench::frame_is_costed(Method::JbfAtrous));
   d.method = Method::Jbf;
-  CHECK(bench::method_stage_cost(d, "filter", false, 1.0, kW, kH)->taps == 33 * 33 - 1);
+  CHECK(bench::method_stage_cost(d, "filter", frames(1.0, kW, kH))->taps == 33 * 33 - 1);
   d.method = Method::Gaussian;
-  CHECK_FALSE(bench::method_stage_cost(d, "blur_x", false, 1.0, kW, kH).has_value());
+  CHECK_FALSE(bench::method_stage_cost(d, "blur_x", frames(1.0, kW, kH)).has_value());
 }
 
 // --- BMFR ---------------------------------------------------------------------------------
@@ -663,21 +957,21 @@ TEST_CASE("stage cost: BMFR is counted in every stage, its regression a row of i
   CHECK(bench::frame_is_costed(Method::Bmfr));
   for (const char* stage : {kSanitizeStage, bmfr_stage::kAccumulate, bmfr_stage::kRegression,
                             bmfr_stage::kWeightedSum, bmfr_stage::kPost, kUploadStage})
-    CHECK(bench::method_stage_cost(d, stage, false, 1.0, 1920, 1080).has_value());
-  CHECK_FALSE(bench::method_stage_cost(d, "atrous", false, 1.0, 1920, 1080).has_value());
+    CHECK(bench::method_stage_cost(d, stage, frames(1.0, 1920, 1080)).has_value());
+  CHECK_FALSE(bench::method_stage_cost(d, "atrous", frames(1.0, 1920, 1080)).has_value());
   // The grid sticks out of the image: at 1080p 61 x 34.75 blocks (the mean over the offsets) of
   // 1024 rows, 4.7% more rows than pixels.
   CHECK(bench::bmfr_blocks_per_px(1920, 1080) * block::kRows ==
         Approx(61 * 34.75 * 1024 / (1920.0 * 1080)));
   // Sanitize reads the world positions besides SVGF's planes.
-  CHECK(bench::method_stage_cost(d, kSanitizeStage, false, 1.0, 1920, 1080)->read ==
+  CHECK(bench::method_stage_cost(d, kSanitizeStage, frames(1.0, 1920, 1080))->read ==
         bench::stage_cost(Mode::Exact, Stage::Sanitize, SvgfParams(), false, 1.0).read + 12);
   // Fast mode's FMA make the regression and the weighted sum cheaper, the noise costs skip
   // nothing, and background rows skip the scaling.
   auto ops = [&](Mode mode, BmfrRankStrategy s, const char* stage, double surface) {
     d.mode = mode;
     d.bmfr.rank_strategy = s;
-    return bench::method_stage_cost(d, stage, false, surface, 1920, 1080)->ops;
+    return bench::method_stage_cost(d, stage, frames(surface, 1920, 1080))->ops;
   };
   const auto noise = BmfrRankStrategy::Noise, skip = BmfrRankStrategy::Skip;
   CHECK(ops(Mode::Fast, noise, bmfr_stage::kRegression, 1) <

@@ -1,5 +1,6 @@
 // Writes the fuzz targets' seed corpus (tests/fuzz/corpus) with the project's own writers, so the
-// seeds are files the readers must accept (or, for the RGB-only file, refuse by name):
+// seeds are files the readers must accept (or, for the RGB-only file, refuse by name); one frame
+// carries the optional `gradient` group, so that the frame fuzzer reaches its reader:
 //   svgf_fuzz_seeds tests/fuzz/corpus
 // Small on purpose: libFuzzer mutates them, and a small input runs many times a second.
 #include <cmath>
@@ -41,6 +42,7 @@ Frame crop(const Frame& f, int x0, int y0, int w, int h) {
   out.reference = crop(f.reference, x0, y0, w, h);
   out.direct = crop(f.direct, x0, y0, w, h);
   out.indirect = crop(f.indirect, x0, y0, w, h);
+  out.gradient = crop(f.gradient, x0, y0, w, h);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
       out.mesh_id.push_back(f.mesh_id[static_cast<size_t>(y0 + y) * f.width() + x0 + x]);
@@ -76,6 +78,23 @@ int main(int argc, char** argv) {
       io::PixelStorage::Half;
   io::write_frame((frames / "fixture_cut_4x4.exr").string(), crop(rendered, 62, 62, 4, 4),
                   fixture_storage);
+
+  // A-SVGF's gradient samples: a 6x6 window (2x2 strata) of the light-switch fixture as its
+  // light goes off (frame 6), so that the samples' two luminances differ.
+  const std::string light_switch = std::string(SVGF_SOURCE_DIR) + "/fixtures/light-switch";
+  const Frame gradient = crop(io::Sequence(light_switch).read(6), 24, 24, 6, 6);
+  int samples = 0, changed = 0;
+  for (size_t i = 0; i < gradient.gradient.pixel_count(); ++i) {
+    if (gradient.gradient.plane(2)[i] != 1.f) continue;
+    ++samples;
+    changed += gradient.gradient.plane(0)[i] != gradient.gradient.plane(1)[i];
+  }
+  if (samples < 2 || changed < 1) {
+    std::fprintf(stderr, "svgf_fuzz_seeds: the light-switch window holds %d samples, %d changed\n",
+                 samples, changed);
+    return 1;
+  }
+  io::write_frame((frames / "gradient_light_switch_6x6.exr").string(), gradient, fixture_storage);
 
   // Only the required channels, all FLOAT, holding special values.
   Frame required;
