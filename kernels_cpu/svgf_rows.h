@@ -6,8 +6,8 @@
 // same tap order: the result is bitwise the per-pixel kernel's (tests/svgf_cpu_rows_test.cpp
 // checks it), and so the GPU's. The CPU engine picks them through PixelDriver.
 // The reprojection's row driver (svgf_reproject_rows.cpp) runs the common case of its
-// per-pixel kernel (four consistent bilinear taps) as vector code over a row, and the per-pixel
-// kernel for the other pixels.
+// per-pixel kernel (a history read through its bilinear taps) as vector code over a row, and
+// the per-pixel kernel for the other pixels.
 #include "kernels_cpu/cpu_engine.h"
 #include "methods/svgf/atrous.h"
 #include "methods/svgf/reproject.h"
