@@ -1,7 +1,8 @@
 // The reprojection's CPU row driver (kernels_cpu/svgf_reproject_rows.cpp) must give the
 // per-pixel kernel's bits exactly (the per-pixel kernel is what the GPU runs), on every
 // instruction-set variant this CPU runs: common pixels, disocclusions, taps off the image's
-// edges, NaN and far motion, the fallback's 3x3 block, every anti-lag, A-SVGF's lambda.
+// edges, NaN and far motion, the fallback's 3x3 block (found or not), every anti-lag, A-SVGF's
+// lambda.
 #include <limits>
 #include <random>
 
@@ -76,13 +77,13 @@ void require_rows_equal_pixels(ReprojectKernel k, const std::string& what) {
 }
 
 // How the per-pixel kernel reads the pixels' history, by its own tests: through all four
-// bilinear taps, through some of them, or otherwise (the 3x3 fallback, no history). The row
-// driver's common case is the first two; the inputs must exercise both.
+// bilinear taps, through some of them, through the 3x3 fallback (found or not). The row driver
+// has a vector pass for each; the inputs must exercise them all.
 struct HistoryPaths {
-  double all_taps = 0, some_taps = 0;
+  double all_taps = 0, some_taps = 0, fallback = 0;
 };
 HistoryPaths history_paths(const ReprojectKernel& k) {
-  int all = 0, some = 0;
+  int all = 0, some = 0, fallback = 0;
   for (int y = 0; y < k.guides.height; ++y)
     for (int x = 0; x < k.guides.width; ++x) {
       const int i = k.guides.index(x, y);
@@ -96,11 +97,13 @@ HistoryPaths history_paths(const ReprojectKernel& k) {
           ++consistent;
           weight += taps.weight(t);
         }
+      const bool bilinear = weight >= k.params.reproject_min_weight;
       all += consistent == 4 ? 1 : 0;
-      some += consistent < 4 && weight >= k.params.reproject_min_weight ? 1 : 0;
+      some += consistent < 4 && bilinear ? 1 : 0;
+      fallback += bilinear ? 0 : 1;
     }
   const double n = double(k.guides.width) * k.guides.height;
-  return {all / n, some / n};
+  return {all / n, some / n, fallback / n};
 }
 
 // A frame with random guides in patches, and a previous frame that mostly matches it: subpixel
@@ -159,6 +162,7 @@ TEST_CASE("cpu rows: reprojection rows equal the per-pixel kernel bitwise", "[cp
       const HistoryPaths paths = history_paths(kernel_for(f, prev, hist, out));
       CHECK(paths.all_taps > 0.2);
       CHECK(paths.some_taps > 0.1);
+      CHECK(paths.fallback > 0.02);
     }
     for (Antilag antilag : {Antilag::Off, Antilag::Statistics, Antilag::Gradient})
       for (bool with_lambda : {false, true})

@@ -110,20 +110,24 @@ struct ReprojectKernel {
     // Fallback: the consistent pixels of the 3x3 block around the nearest previous pixel, equally
     // weighted, in the hope of finding the surface somewhere near (Falcor).
     h = History();
-    const int xn = static_cast<int>(floor_small(px + 0.5f));
-    const int yn = static_cast<int>(floor_small(py + 0.5f));
+    const int xn = nearest(px), yn = nearest(py);
     float count = 0.f;
-    for (int dy = -1; dy <= 1; ++dy) {
-      for (int dx = -1; dx <= 1; ++dx) {
-        if (!tap_consistent(i, xn + dx, yn + dy)) continue;
-        const int j = prev_guides.index(xn + dx, yn + dy);
-        h.color += prev_color.load(j);
-        h.moments += make_vec2(prev_moment1[j], prev_moment2[j]);
-        h.length = h.length + prev_history[j];
-        count = count + 1.f;
-      }
-    }
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx)
+        if (tap_consistent(i, xn + dx, yn + dy))
+          add_pixel(h, count, prev_guides.index(xn + dx, yn + dy));
     return count > 0.f ? normalized(h, count) : History();
+  }
+
+  // The pixel coordinate nearest to p: the centre of the fallback's 3x3 block.
+  SVGF_HD static int nearest(float p) { return static_cast<int>(floor_small(p + 0.5f)); }
+
+  // Adds the previous frame's pixel j, unweighted, to the fallback's sums h and count.
+  SVGF_HD void add_pixel(History& h, float& count, int j) const {
+    h.color += prev_color.load(j);
+    h.moments += make_vec2(prev_moment1[j], prev_moment2[j]);
+    h.length = h.length + prev_history[j];
+    count = count + 1.f;
   }
 
   // Anti-lag without gradient samples (issue 12, item 3's fallback): how far the history's
