@@ -1,10 +1,9 @@
 // SVGF's reprojection on the CPU, a row at a time. The per-pixel kernel branches on every tap
-// (inside? consistent?) and stays scalar. Most pixels take its common case: a history read
-// through the consistent ones of the four bilinear taps, no statistics anti-lag. A row runs
-// that case for every pixel as straight-line vector code, built from the kernel's own pieces
-// (methods/svgf/reproject.h: the same operations in the same order), and the per-pixel kernel
-// redoes the pixels that took another path (no surface, far motion, the 3x3 fallback, a
-// history dropped whole). Same bits as the per-pixel kernel
+// (inside? consistent?) and stays scalar. A row runs its two history reads as vector loops,
+// built from the kernel's own pieces (methods/svgf/reproject.h: the same operations in the
+// same order): every pixel through its bilinear taps, then the pixels whose taps weigh too
+// little through the 3x3 fallback. The per-pixel kernel runs the stage under the statistics
+// anti-lag and without history. Same bits as the per-pixel kernel
 // (tests/svgf_cpu_reproject_rows_test.cpp).
 #include <vector>
 
@@ -18,13 +17,6 @@ namespace {
 // from vectorizing the loop).
 inline int clamp_index(int v, int last) { return v < 0 ? 0 : (v > last ? last : v); }
 
-// What the vector passes made of a pixel.
-enum PixelPath : int {
-  kPerPixel = 0,  // to be run by the per-pixel kernel
-  kDone = 1,      // its outputs are the per-pixel kernel's
-  kFallback = 2,  // a surface whose bilinear taps weigh too little: read_history's 3x3 block
-};
-
 // h and weight become with and with_weight where take: a tap added by a select, not a branch.
 inline void take_if(bool take, const ReprojectKernel::History& with, float with_weight,
                     ReprojectKernel::History& h, float& weight) {
@@ -37,13 +29,26 @@ inline void take_if(bool take, const ReprojectKernel::History& with, float with_
   weight = take ? with_weight : weight;
 }
 
-// Pixels 0..w-1 of row y through the bilinear taps: outputs written for every pixel, path[x]
-// kDone where they are the per-pixel kernel's; elsewhere they are meaningless and a later pass
-// overwrites them. A tap is loaded clamped into the image (every load in bounds) and added
-// where read_history adds it (inside and consistent), the same sums.
+// The end of the per-pixel kernel for a history read h (valid) that counts where `read`:
+// the anti-lags (no statistics anti-lag here: it drops nothing), then the blend of pixel i,
+// whose outputs `k` stores at `at`.
 template <bool kLambda>  // whether gradient_lambda is given
+inline void blend_read(const ReprojectKernel& k, int x, int y, int i, int at, bool read,
+                       ReprojectKernel::History h) {
+  const Vec3 c = k.illumination.load(i);
+  const float lambda = kLambda ? k.gradient_lambda[k.stratum(x, y)] : 0.f;
+  const bool kept = read & ReprojectKernel::history_kept(h, 0.f, lambda);
+  k.blend(at, c, luminance(c), ReprojectKernel::none_unless(kept, h), kept ? lambda : 0.f);
+}
+
+// Pixels 0..w-1 of row y through their bilinear taps, as read_history reads them: outputs
+// written for every pixel, and fallback[x] set where pixel x needs read_history's 3x3 block
+// instead (its outputs are meaningless then; the next pass overwrites them). A tap is loaded
+// clamped into the image (every load in bounds) and added where read_history adds it (inside
+// and consistent), the same sums.
+template <bool kLambda>
 SVGF_TAP_LOOP void reproject_bilinear(const ReprojectKernel& kernel, int y,
-                                      int* __restrict path) {
+                                      int* __restrict fallback) {
   using History = ReprojectKernel::History;
   const ReprojectKernel k = kernel;  // a local copy: its plane pointers stay in registers
   const int w = k.guides.width;
@@ -67,24 +72,18 @@ SVGF_TAP_LOOP void reproject_bilinear(const ReprojectKernel& kernel, int y,
       take_if(k.prev_guides.inside(xt, yt) & k.tap_matches(i, j), with, with_sum, h, weight_sum);
     }
     const bool bilinear = weight_sum >= min_weight;
-    h = ReprojectKernel::normalized(h, weight_sum);
-    bool ok = moved & bilinear;
-    ok = ok & ReprojectKernel::shorten(h, 0.f);  // no statistics anti-lag: nothing dropped
-    const float lambda = kLambda ? k.gradient_lambda[k.stratum(x, y)] : 0.f;
-    ok = ok & (lambda < 1.f);
-    const Vec3 c = k.illumination.load(i);
-    k.blend(i, c, luminance(c), h, lambda);
-    path[x] = ok ? kDone : (moved & !bilinear ? kFallback : kPerPixel);
+    blend_read<kLambda>(k, x, y, i, i, moved & bilinear,
+                        ReprojectKernel::normalized(h, weight_sum));
+    fallback[x] = moved & !bilinear;
   }
 }
 
 // read_history's fallback for the pixels x = pending[0..n) of row y, one a lane, the same
 // way: `compact` is the kernel with its outputs in row scratch, where pixel pending[m] writes
-// at m; done[m] says where they are the per-pixel kernel's.
+// at m.
 template <bool kLambda>
 SVGF_TAP_LOOP void reproject_fallback(const ReprojectKernel& compact, int y,
-                                      const int* __restrict pending, int n,
-                                      int* __restrict done) {
+                                      const int* __restrict pending, int n) {
   using History = ReprojectKernel::History;
   const ReprojectKernel k = compact;
   const int last_x = k.prev_guides.width - 1, last_y = k.prev_guides.height - 1;
@@ -106,54 +105,43 @@ SVGF_TAP_LOOP void reproject_fallback(const ReprojectKernel& compact, int y,
       k.add_pixel(with, with_count, j);
       take_if(k.prev_guides.inside(xt, yt) & k.tap_matches(i, j), with, with_count, h, count);
     }
-    bool ok = count > 0.f;
-    h = ReprojectKernel::normalized(h, count);
-    ok = ok & ReprojectKernel::shorten(h, 0.f);
-    const float lambda = kLambda ? k.gradient_lambda[k.stratum(x, y)] : 0.f;
-    ok = ok & (lambda < 1.f);
-    const Vec3 c = k.illumination.load(i);
-    k.blend(m, c, luminance(c), h, lambda);
-    done[m] = ok;
+    blend_read<kLambda>(k, x, y, i, m, count > 0.f, ReprojectKernel::normalized(h, count));
   }
 }
 
-// Row y: the two vector passes, then the per-pixel kernel for what they left.
+// Row y: every pixel through its bilinear taps, then those that need it through the 3x3
+// fallback, their outputs copied into place.
 template <bool kLambda>
 void reproject_row(const ReprojectKernel& kernel, const ReprojectKernel& compact, int y,
-                   int* path, int* pending, int* done) {
+                   int* fallback, int* pending) {
   const int w = kernel.guides.width;
-  reproject_bilinear<kLambda>(kernel, y, path);
+  reproject_bilinear<kLambda>(kernel, y, fallback);
   int n = 0;
   for (int x = 0; x < w; ++x)
-    if (path[x] == kFallback) pending[n++] = x;
-  if (n > 0) reproject_fallback<kLambda>(compact, y, pending, n, done);
+    if (fallback[x]) pending[n++] = x;
+  if (n == 0) return;
+  reproject_fallback<kLambda>(compact, y, pending, n);
   for (int m = 0; m < n; ++m) {
-    const int x = pending[m], i = kernel.guides.index(x, y);
-    if (!done[m]) {
-      path[x] = kPerPixel;
-      continue;
-    }
+    const int i = kernel.guides.index(pending[m], y);
     kernel.accumulated.color.store(i, compact.accumulated.color.load(m));
     kernel.accumulated.variance[i] = compact.accumulated.variance[m];
     kernel.moment1[i] = compact.moment1[m];
     kernel.moment2[i] = compact.moment2[m];
     kernel.history[i] = compact.history[m];
   }
-  for (int x = 0; x < w; ++x)
-    if (path[x] == kPerPixel) kernel(x, y);
 }
 
 }  // namespace
 
 void run_reproject_rows(const ReprojectKernel& kernel, int width, int height) {
-  // No vector pass: no history (every pixel restarts), or the statistics anti-lag (a 5x5
-  // neighbourhood per pixel).
+  // The per-pixel kernel: no history (every pixel restarts), or the statistics anti-lag (a
+  // 5x5 neighbourhood per pixel).
   if (!kernel.has_history || kernel.statistics_antilag()) {
     for_each_pixel(width, height, kernel);
     return;
   }
   parallel_rows(height, [&](int y0, int y1) {
-    std::vector<int> path(static_cast<size_t>(width)), pending(path.size()), done(path.size());
+    std::vector<int> fallback(static_cast<size_t>(width)), pending(fallback.size());
     RowScratch out(7, width);
     ReprojectKernel compact = kernel;
     compact.accumulated = {RgbView(out[0], out[1], out[2]), out[3]};
@@ -162,9 +150,9 @@ void run_reproject_rows(const ReprojectKernel& kernel, int width, int height) {
     compact.history = out[6];
     for (int y = y0; y < y1; ++y) {
       if (kernel.gradient_lambda)
-        reproject_row<true>(kernel, compact, y, path.data(), pending.data(), done.data());
+        reproject_row<true>(kernel, compact, y, fallback.data(), pending.data());
       else
-        reproject_row<false>(kernel, compact, y, path.data(), pending.data(), done.data());
+        reproject_row<false>(kernel, compact, y, fallback.data(), pending.data());
     }
   });
 }

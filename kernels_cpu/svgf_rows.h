@@ -1,13 +1,12 @@
 #pragma once
-// SVGF's CPU drivers for the two wide-neighbourhood stages and the reprojection. The per-pixel kernels in
-// methods/svgf/ loop over taps inside each pixel, which no compiler vectorizes; these loop over
+// SVGF's CPU drivers for the two wide-neighbourhood stages and the reprojection. The per-pixel
+// kernels in methods/svgf/ loop over taps inside each pixel, which no compiler vectorizes; these loop over
 // taps outside and over a row of pixels inside, so each inner loop is straight-line SIMD code.
 // Every pixel still sums the same terms, computed by the same methods/svgf/ functions, in the
 // same tap order: the result is bitwise the per-pixel kernel's (tests/svgf_cpu_rows_test.cpp
 // checks it), and so the GPU's. The CPU engine picks them through PixelDriver.
-// The reprojection's row driver (svgf_reproject_rows.cpp) runs the common case of its
-// per-pixel kernel (a history read through its bilinear taps) as vector code over a row, and
-// the per-pixel kernel for the other pixels.
+// The reprojection's row driver (svgf_reproject_rows.cpp) runs its per-pixel kernel's history
+// reads (bilinear taps, 3x3 fallback) and its blend as vector code over a row.
 #include "kernels_cpu/cpu_engine.h"
 #include "methods/svgf/atrous.h"
 #include "methods/svgf/reproject.h"

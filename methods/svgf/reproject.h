@@ -194,18 +194,35 @@ struct ReprojectKernel {
 
   SVGF_HD void operator()(int x, int y) const {
     const int i = guides.index(x, y);
-    blend_history(x, y, i, read_history(x, y, i));
-  }
-
-  // The stage after the history read: the anti-lags, then the blend.
-  SVGF_HD void blend_history(int x, int y, int i, History h) const {
     const Vec3 c = illumination.load(i);
     const float l = luminance(c);
-    if (h.valid && !shorten(h, antilag_drop(x, y, i, l, h))) h = History();
-    // A-SVGF: the stratum's share of change; all of it, and the pixel restarts.
-    const float lambda = h.valid && gradient_lambda ? gradient_lambda[stratum(x, y)] : 0.f;
-    if (!(lambda < 1.f)) h = History();
-    blend(i, c, l, h, lambda);
+    History h = read_history(x, y, i);
+    const float drop = h.valid ? antilag_drop(x, y, i, l, h) : 0.f;
+    const float lambda = gradient_lambda ? gradient_lambda[stratum(x, y)] : 0.f;
+    const bool kept = history_kept(h, drop, lambda);
+    blend(i, c, l, none_unless(kept, h), kept ? lambda : 0.f);
+  }
+
+  // Whether the history h is kept through the anti-lags: the statistics anti-lag's drop
+  // shortens it, and dropped whole (nothing left, not even in rounding) or with A-SVGF's lambda
+  // of its stratum (0 without the gradient stages) 1 or more, the pixel restarts as after a
+  // disocclusion. No history is never kept.
+  SVGF_HD static bool history_kept(History& h, float drop, float stratum_lambda) {
+    return h.valid & shorten(h, drop) & (stratum_lambda < 1.f);
+  }
+
+  // h where keep (a valid h), else no history; selects, not branches (the CPU rows run it per
+  // vector lane).
+  SVGF_HD static History none_unless(bool keep, const History& h) {
+    History r;
+    r.color.x = keep ? h.color.x : 0.f;
+    r.color.y = keep ? h.color.y : 0.f;
+    r.color.z = keep ? h.color.z : 0.f;
+    r.moments.x = keep ? h.moments.x : 0.f;
+    r.moments.y = keep ? h.moments.y : 0.f;
+    r.length = keep ? h.length : 0.f;
+    r.valid = keep;
+    return r;
   }
 
   // The new sample c (luminance l) blended into the history h (anti-lag applied, A-SVGF's
