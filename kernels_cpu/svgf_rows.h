@@ -1,7 +1,8 @@
 #pragma once
 // SVGF's CPU drivers for the two wide-neighbourhood stages and the reprojection. The per-pixel
-// kernels in methods/svgf/ loop over taps inside each pixel, which no compiler vectorizes; these loop over
-// taps outside and over a row of pixels inside, so each inner loop is straight-line SIMD code.
+// kernels in methods/svgf/ loop over taps inside each pixel, which no compiler vectorizes;
+// these loop over taps outside and over a row of pixels inside, so each inner loop is
+// straight-line SIMD code.
 // Every pixel still sums the same terms, computed by the same methods/svgf/ functions, in the
 // same tap order: the result is bitwise the per-pixel kernel's (tests/svgf_cpu_rows_test.cpp
 // checks it), and so the GPU's. The CPU engine picks them through PixelDriver.
