@@ -161,6 +161,9 @@ void run_atrous_rows(const AtrousKernel& kernel, int width, int height) {
 void run_variance_rows(const VarianceKernel& kernel, int width, int height) {
   pick_variant("").variance_rows(kernel, width, height);
 }
+void run_reproject_rows(const ReprojectKernel& kernel, int width, int height) {
+  pick_variant("").reproject_rows(kernel, width, height);
+}
 void run_wavelet_rows(const WaveletExactIteration& kernel, int width, int height) {
   pick_variant("").wavelet_rows(kernel, width, height);
 }

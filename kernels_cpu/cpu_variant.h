@@ -16,6 +16,7 @@
 #include "methods/jbf/params.h"
 #include "methods/svgf/atrous.h"
 #include "methods/svgf/params.h"
+#include "methods/svgf/reproject.h"
 #include "methods/svgf/variance.h"
 #include "methods/wavelet/params.h"
 
@@ -36,6 +37,7 @@ struct CpuVariant {
   std::unique_ptr<Denoiser> (*make_bmfr)(const BmfrParams&, const EngineConfig&);
   void (*atrous_rows)(const AtrousKernel&, int, int);
   void (*variance_rows)(const VarianceKernel&, int, int);
+  void (*reproject_rows)(const ReprojectKernel&, int, int);
   void (*wavelet_rows)(const WaveletExactIteration&, int, int);
   void (*jbf_rows)(const JbfPass<ExactArith>&, int, int);
 };

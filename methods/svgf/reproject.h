@@ -46,14 +46,19 @@ struct ReprojectKernel {
 
   // May the previous frame's pixel (xp, yp) stand for this frame's pixel i?
   SVGF_HD bool tap_consistent(int i, int xp, int yp) const {
-    if (!prev_guides.inside(xp, yp)) return false;
-    const int j = prev_guides.index(xp, yp);
-    if (guides.mesh_id[i] != prev_guides.mesh_id[j]) return false;
+    return prev_guides.inside(xp, yp) && tap_matches(i, prev_guides.index(xp, yp));
+  }
+  // The same for a previous pixel j inside the image: same mesh, similar depth and normal. All
+  // three tests are evaluated (no early exit), so a vectorized caller loads unconditionally.
+  SVGF_HD bool tap_matches(int i, int j) const {
+    const bool same_mesh = guides.mesh_id[i] == prev_guides.mesh_id[j];
     const float z = guides.depth[i];
     const float tolerance = params.reproject_depth_gradient_scale * guides.depth_fwidth(i) +
                             params.reproject_depth_relative * z;
-    if (!(abs_f(z - prev_guides.depth[j]) <= tolerance)) return false;  // NaN fails too
-    return dot(guides.normal.load(i), prev_guides.normal.load(j)) >= params.reproject_normal_cos;
+    const bool near_depth = abs_f(z - prev_guides.depth[j]) <= tolerance;  // NaN fails too
+    const bool near_normal =
+        dot(guides.normal.load(i), prev_guides.normal.load(j)) >= params.reproject_normal_cos;
+    return same_mesh & near_depth & near_normal;
   }
 
   struct History {
@@ -63,56 +68,66 @@ struct ReprojectKernel {
     bool valid = false;
   };
 
+  // Where pixel (x, y) lies in the previous frame, (px, py); false when it has no history to
+  // read there (no surface, or motion far outside or NaN: no float-to-int conversion out of
+  // range follows). The tests are all evaluated (a vectorized caller loads unconditionally).
+  SVGF_HD bool previous_position(int x, int y, int i, float& px, float& py) const {
+    px = static_cast<float>(x) + guides.motion_x[i];
+    py = static_cast<float>(y) + guides.motion_y[i];
+    return guides.is_surface(i) & (abs_f(px) < 1e7f) & (abs_f(py) < 1e7f);
+  }
+
+  // Adds the previous frame's pixel j, weighted w, to the sums h and weight_sum.
+  SVGF_HD void add_tap(History& h, float& weight_sum, int j, float w) const {
+    h.color += prev_color.load(j) * w;
+    h.moments += make_vec2(prev_moment1[j], prev_moment2[j]) * w;
+    h.length = h.length + prev_history[j] * w;
+    weight_sum = weight_sum + w;
+  }
+
+  // The sums h divided by what they weigh: a history read.
+  SVGF_HD static History normalized(History h, float weight) {
+    h.color = h.color / weight;
+    h.moments = h.moments / weight;
+    h.length = h.length / weight;
+    h.valid = true;
+    return h;
+  }
+
   SVGF_HD History read_history(int x, int y, int i) const {
     History h;
-    if (!has_history || !guides.is_surface(i)) return h;
-    const float px = static_cast<float>(x) + guides.motion_x[i];
-    const float py = static_cast<float>(y) + guides.motion_y[i];
-    // Far outside (or NaN motion): no history, and no float-to-int conversion out of range.
-    if (!(abs_f(px) < 1e7f && abs_f(py) < 1e7f)) return h;
+    float px = 0.f, py = 0.f;
+    if (!has_history || !previous_position(x, y, i, px, py)) return h;
     const BilinearTaps taps = BilinearTaps::at(px, py);
     float weight_sum = 0.f;
     for (int k = 0; k < 4; ++k) {
       const int xk = taps.x(k);
       const int yk = taps.y(k);
-      if (!tap_consistent(i, xk, yk)) continue;
-      const int j = prev_guides.index(xk, yk);
-      const float w = taps.weight(k);
-      h.color += prev_color.load(j) * w;
-      h.moments += make_vec2(prev_moment1[j], prev_moment2[j]) * w;
-      h.length = h.length + prev_history[j] * w;
-      weight_sum = weight_sum + w;
+      if (tap_consistent(i, xk, yk))
+        add_tap(h, weight_sum, prev_guides.index(xk, yk), taps.weight(k));
     }
-    if (weight_sum >= params.reproject_min_weight) {
-      h.color = h.color / weight_sum;
-      h.moments = h.moments / weight_sum;
-      h.length = h.length / weight_sum;
-      h.valid = true;
-      return h;
-    }
+    if (weight_sum >= params.reproject_min_weight) return normalized(h, weight_sum);
     // Fallback: the consistent pixels of the 3x3 block around the nearest previous pixel, equally
     // weighted, in the hope of finding the surface somewhere near (Falcor).
     h = History();
-    const int xn = static_cast<int>(floor_small(px + 0.5f));
-    const int yn = static_cast<int>(floor_small(py + 0.5f));
+    const int xn = nearest(px), yn = nearest(py);
     float count = 0.f;
-    for (int dy = -1; dy <= 1; ++dy) {
-      for (int dx = -1; dx <= 1; ++dx) {
-        if (!tap_consistent(i, xn + dx, yn + dy)) continue;
-        const int j = prev_guides.index(xn + dx, yn + dy);
-        h.color += prev_color.load(j);
-        h.moments += make_vec2(prev_moment1[j], prev_moment2[j]);
-        h.length = h.length + prev_history[j];
-        count = count + 1.f;
-      }
-    }
-    if (count > 0.f) {
-      h.color = h.color / count;
-      h.moments = h.moments / count;
-      h.length = h.length / count;
-      h.valid = true;
-    }
-    return h;
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx)
+        if (tap_consistent(i, xn + dx, yn + dy))
+          add_pixel(h, count, prev_guides.index(xn + dx, yn + dy));
+    return count > 0.f ? normalized(h, count) : History();
+  }
+
+  // The pixel coordinate nearest to p: the centre of the fallback's 3x3 block.
+  SVGF_HD static int nearest(float p) { return static_cast<int>(floor_small(p + 0.5f)); }
+
+  // Adds the previous frame's pixel j, unweighted, to the fallback's sums h and count.
+  SVGF_HD void add_pixel(History& h, float& count, int j) const {
+    h.color += prev_color.load(j);
+    h.moments += make_vec2(prev_moment1[j], prev_moment2[j]);
+    h.length = h.length + prev_history[j];
+    count = count + 1.f;
   }
 
   // Anti-lag without gradient samples (issue 12, item 3's fallback): how far the history's
@@ -150,14 +165,31 @@ struct ReprojectKernel {
     return abs_f(l_history - mean) / tolerance;
   }
 
+  // Whether the statistics anti-lag runs (asked for, or standing in for a missing lambda).
+  SVGF_HD bool statistics_antilag() const {
+    return params.antilag == Antilag::Statistics ||
+           (params.antilag == Antilag::Gradient && !gradient_lambda);
+  }
+
   // The share of the history the anti-lag drops: 0 up to antilag_low, 1 from antilag_high.
   SVGF_HD float antilag_drop(int x, int y, int i, float l, const History& h) const {
-    const bool statistics = params.antilag == Antilag::Statistics ||
-                            (params.antilag == Antilag::Gradient && !gradient_lambda);
-    if (!statistics) return 0.f;
+    if (!statistics_antilag()) return 0.f;
     const float d = history_discrepancy(x, y, i, l, h);
     if (!(d > params.antilag_low)) return 0.f;
     return min_f(1.f, (d - params.antilag_low) / (params.antilag_high - params.antilag_low));
+  }
+
+  // A history the frame contradicts counts for fewer frames, so the new sample weighs more.
+  // False when nothing of it is left, not even in rounding: the pixel restarts as after a
+  // disocclusion.
+  SVGF_HD static bool shorten(History& h, float drop) {
+    h.length = h.length * (1.f - drop);
+    return h.length > 0.f;
+  }
+
+  // The index of pixel (x, y)'s stratum in gradient_lambda.
+  SVGF_HD int stratum(int x, int y) const {
+    return (y / kGradientStratum) * strata_along(guides.width) + x / kGradientStratum;
   }
 
   SVGF_HD void operator()(int x, int y) const {
@@ -165,19 +197,37 @@ struct ReprojectKernel {
     const Vec3 c = illumination.load(i);
     const float l = luminance(c);
     History h = read_history(x, y, i);
-    // A history the frame contradicts counts for fewer frames, so the new sample weighs more;
-    // all of it dropped, the pixel restarts as after a disocclusion.
-    if (h.valid) {
-      const float drop = antilag_drop(x, y, i, l, h);
-      h.length = h.length * (1.f - drop);
-      if (!(h.length > 0.f)) h = History();  // nothing of it, not even in rounding
-    }
-    // A-SVGF: the stratum's share of change; all of it, and the pixel restarts.
-    const float lambda = h.valid && gradient_lambda
-                             ? gradient_lambda[(y / kGradientStratum) * strata_along(guides.width) +
-                                               x / kGradientStratum]
-                             : 0.f;
-    if (!(lambda < 1.f)) h = History();
+    const float drop = h.valid ? antilag_drop(x, y, i, l, h) : 0.f;
+    const float lambda = gradient_lambda ? gradient_lambda[stratum(x, y)] : 0.f;
+    const bool kept = history_kept(h, drop, lambda);
+    blend(i, c, l, none_unless(kept, h), kept ? lambda : 0.f);
+  }
+
+  // Whether the history h is kept through the anti-lags: the statistics anti-lag's drop
+  // shortens it, and dropped whole (nothing left, not even in rounding) or with A-SVGF's lambda
+  // of its stratum (0 without the gradient stages) 1 or more, the pixel restarts as after a
+  // disocclusion. No history is never kept.
+  SVGF_HD static bool history_kept(History& h, float drop, float stratum_lambda) {
+    return h.valid & shorten(h, drop) & (stratum_lambda < 1.f);
+  }
+
+  // h where keep (a valid h), else no history; selects, not branches (the CPU rows run it per
+  // vector lane).
+  SVGF_HD static History none_unless(bool keep, const History& h) {
+    History r;
+    r.color.x = keep ? h.color.x : 0.f;
+    r.color.y = keep ? h.color.y : 0.f;
+    r.color.z = keep ? h.color.z : 0.f;
+    r.moments.x = keep ? h.moments.x : 0.f;
+    r.moments.y = keep ? h.moments.y : 0.f;
+    r.length = keep ? h.length : 0.f;
+    r.valid = keep;
+    return r;
+  }
+
+  // The new sample c (luminance l) blended into the history h (anti-lag applied, A-SVGF's
+  // lambda not yet), and the outputs of pixel i.
+  SVGF_HD void blend(int i, Vec3 c, float l, const History& h, float lambda) const {
     float length = h.valid ? min_f(h.length + 1.f, static_cast<float>(params.history_cap)) : 1.f;
     // With history h, alpha = 1/h makes the first frames an equal-weight mean.
     float alpha = h.valid ? max_f(params.alpha, 1.f / length) : 1.f;

@@ -1,0 +1,199 @@
+// The reprojection's CPU row driver (kernels_cpu/svgf_reproject_rows.cpp) must give the
+// per-pixel kernel's bits exactly (the per-pixel kernel is what the GPU runs), on every
+// instruction-set variant this CPU runs: common pixels, disocclusions, taps off the image's
+// edges, NaN and far motion, the fallback's 3x3 block (found or not), every anti-lag, A-SVGF's
+// lambda.
+#include <limits>
+#include <random>
+
+#include <catch2/catch.hpp>
+
+#include "io/sequence.h"
+#include "kernels_cpu/cpu_variant.h"
+#include "kernels_cpu/parallel_for.h"
+#include "methods/svgf/reproject.h"
+#include "test_support.h"
+
+using namespace svgf;
+
+namespace {
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+// A frame's history as the previous frame left it, and the planes the stage writes.
+struct History {
+  Image color, moments, length;
+  History(int w, int h, uint32_t seed) : color(w, h, 3), moments(w, h, 2), length(w, h, 1) {
+    test::fill_uniform(color, 0.f, 2.f, seed);
+    test::fill_uniform(moments, 0.f, 1.f, seed + 1);
+    test::fill_uniform(length, 1.f, 40.f, seed + 2);
+    for (float& v : length.data()) v = std::floor(v);
+    for (size_t i = 7; i < length.data().size(); i += 13) length.data()[i] = 0.f;  // none left
+  }
+};
+
+// The stage's kernel on the guides of `frame` and `prev`, writing into `out` (7 planes:
+// accumulated color and variance, moment 1 and 2, history length).
+ReprojectKernel kernel_for(const Frame& frame, const Frame& prev, const History& hist, Image& out) {
+  ReprojectKernel k;
+  k.guides = frame.guides();
+  k.prev_guides = prev.guides();
+  k.illumination = frame.color.rgb();
+  k.color = frame.color.rgb();
+  k.albedo = frame.albedo.rgb();
+  k.prev_color = hist.color.rgb();
+  k.prev_moment1 = hist.moments.plane(0);
+  k.prev_moment2 = hist.moments.plane(1);
+  k.prev_history = hist.length.plane(0);
+  k.has_history = true;
+  k.accumulated = {out.rgb(), out.plane(3)};
+  k.moment1 = out.plane(4);
+  k.moment2 = out.plane(5);
+  k.history = out.plane(6);
+  return k;
+}
+
+// The per-pixel kernel against every variant's row driver, on `k` as given.
+void require_rows_equal_pixels(ReprojectKernel k, const std::string& what) {
+  const int w = k.guides.width, h = k.guides.height;
+  Image expected(w, h, 7, -1.f);
+  k.accumulated = {expected.rgb(), expected.plane(3)};
+  k.moment1 = expected.plane(4);
+  k.moment2 = expected.plane(5);
+  k.history = expected.plane(6);
+  cpu::for_each_pixel(w, h, k);
+  int variants = 0;
+  for (const cpu::CpuVariant* v : cpu::built_variants()) {
+    if (!cpu::runs_here(*v)) continue;
+    Image got(w, h, 7, -2.f);
+    k.accumulated = {got.rgb(), got.plane(3)};
+    k.moment1 = got.plane(4);
+    k.moment2 = got.plane(5);
+    k.history = got.plane(6);
+    v->reproject_rows(k, w, h);
+    test::require_identical(got, expected, what + " on " + v->name);
+    ++variants;
+  }
+  REQUIRE(variants > 0);
+}
+
+// How the per-pixel kernel reads the pixels' history, by its own tests: through all four
+// bilinear taps, through some of them, through the 3x3 fallback (found or not). The row driver
+// has a vector pass for each; the inputs must exercise them all.
+struct HistoryPaths {
+  double all_taps = 0, some_taps = 0, fallback = 0;
+};
+HistoryPaths history_paths(const ReprojectKernel& k) {
+  int all = 0, some = 0, fallback = 0;
+  for (int y = 0; y < k.guides.height; ++y)
+    for (int x = 0; x < k.guides.width; ++x) {
+      const int i = k.guides.index(x, y);
+      float px = 0.f, py = 0.f;
+      if (!k.previous_position(x, y, i, px, py)) continue;
+      const BilinearTaps taps = BilinearTaps::at(px, py);
+      int consistent = 0;
+      float weight = 0.f;
+      for (int t = 0; t < 4; ++t)
+        if (k.tap_consistent(i, taps.x(t), taps.y(t))) {
+          ++consistent;
+          weight += taps.weight(t);
+        }
+      const bool bilinear = weight >= k.params.reproject_min_weight;
+      all += consistent == 4 ? 1 : 0;
+      some += consistent < 4 && bilinear ? 1 : 0;
+      fallback += bilinear ? 0 : 1;
+    }
+  const double n = double(k.guides.width) * k.guides.height;
+  return {all / n, some / n, fallback / n};
+}
+
+// A frame with random guides in patches, and a previous frame that mostly matches it: subpixel
+// motion, with some pixels disoccluded (another mesh, depth or normal before), others moved off
+// the image, far away or by NaN, and background holes.
+std::pair<Frame, Frame> random_pair(int w, int h, uint32_t seed) {
+  Frame f = test::flat_frame(w, h), prev = test::flat_frame(w, h);
+  test::fill_uniform(f.color, 0.f, 3.f, seed);
+  test::fill_uniform(f.depth_gradient, -0.05f, 0.05f, seed + 1);
+  std::mt19937 rng(seed + 2);
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  for (int i = 0; i < w * h; ++i) {
+    const int x = i % w, y = i / w;
+    const bool near = (x / 6 + y / 5) % 3 == 0;  // two surfaces in patches of a few pixels
+    const bool hole = u(rng) < 0.02f;
+    f.depth.plane(0)[i] = hole ? 0.f : (near ? 2.f + u(rng) * 0.01f : 5.f);
+    f.mesh_id[i] = near ? 1u : 2u;
+    const float tilt = 0.3f + u(rng) * 0.1f, n = std::sqrt(1.f + tilt * tilt);
+    f.normal.plane(0)[i] = tilt / n;
+    f.normal.plane(2)[i] = 1.f / n;
+    f.motion.plane(0)[i] = u(rng) * 3.f - 1.5f;
+    f.motion.plane(1)[i] = u(rng) * 3.f - 1.5f;
+    const float odd = u(rng);
+    if (odd < 0.02f) f.motion.plane(0)[i] = kNaN;
+    else if (odd < 0.04f) f.motion.plane(1)[i] = 3e7f;
+    else if (odd < 0.06f) f.motion.plane(0)[i] = -float(w) - 3.f;
+  }
+  // The previous frame: the same guides, a few changed (a disocclusion at those taps).
+  for (int i = 0; i < w * h; ++i) {
+    prev.depth.plane(0)[i] = f.depth.plane(0)[i] * (1.f + (u(rng) - 0.5f) * 0.01f);
+    prev.mesh_id[i] = f.mesh_id[i];
+    for (int c = 0; c < 3; ++c) prev.normal.plane(c)[i] = f.normal.plane(c)[i];
+    const float change = u(rng);
+    if (change < 0.04f) prev.mesh_id[i] = 7u;
+    else if (change < 0.08f) prev.depth.plane(0)[i] = 9.f;
+    else if (change < 0.12f) prev.normal.plane(0)[i] = -prev.normal.plane(0)[i] - 0.5f;
+  }
+  return {std::move(f), std::move(prev)};
+}
+
+}  // namespace
+
+TEST_CASE("cpu rows: reprojection rows equal the per-pixel kernel bitwise", "[cpu_rows]") {
+  const int sizes[][2] = {{257, 41}, {16, 16}, {2, 2}, {1, 7}, {9, 1}, {31, 9}};
+  uint32_t seed = 200;
+  for (const auto& size : sizes) {
+    const int w = size[0], h = size[1];
+    const auto [f, prev] = random_pair(w, h, ++seed);
+    const History hist(w, h, ++seed);
+    Image out(w, h, 7), lambda(strata_along(w), strata_along(h), 1);
+    test::fill_uniform(lambda, -0.2f, 1.2f, ++seed);  // below 0, 0 to 1 and past 1
+    lambda.data()[0] = 0.f;
+    lambda.data().back() = 1.f;
+    const std::string size_name = std::to_string(w) + "x" + std::to_string(h);
+    if (w * h > 200) {
+      const HistoryPaths paths = history_paths(kernel_for(f, prev, hist, out));
+      CHECK(paths.all_taps > 0.2);
+      CHECK(paths.some_taps > 0.1);
+      CHECK(paths.fallback > 0.02);
+    }
+    for (Antilag antilag : {Antilag::Off, Antilag::Statistics, Antilag::Gradient})
+      for (bool with_lambda : {false, true})
+        for (bool has_history : {true, false}) {
+          ReprojectKernel k = kernel_for(f, prev, hist, out);
+          k.params.antilag = antilag;
+          k.params.history_cap = with_lambda ? 8 : 32;
+          k.gradient_lambda = with_lambda ? lambda.plane(0) : nullptr;
+          k.has_history = has_history;
+          require_rows_equal_pixels(k, "reproject " + size_name + ", antilag " +
+                                           std::to_string(int(antilag)) +
+                                           (with_lambda ? ", lambda" : "") +
+                                           (has_history ? "" : ", no history"));
+        }
+  }
+}
+
+TEST_CASE("cpu rows: reprojection rows equal the per-pixel kernel on fixtures", "[cpu_rows]") {
+  // camera-pan: every pixel moves, the pan uncovers an edge; cornell-moving: a moving object
+  // disoccludes the wall behind it.
+  for (const char* name : {"camera-pan", "cornell-moving"}) {
+    const io::Sequence fixture(std::string(SVGF_SOURCE_DIR) + "/fixtures/" + name);
+    const Frame prev = fixture.read(2), f = fixture.read(3);
+    const History hist(f.width(), f.height(), 300);
+    Image out(f.width(), f.height(), 7);
+    for (Antilag antilag : {Antilag::Off, Antilag::Statistics}) {
+      ReprojectKernel k = kernel_for(f, prev, hist, out);
+      k.params.antilag = antilag;
+      CHECK(history_paths(k).all_taps > 0.5);
+      require_rows_equal_pixels(k, std::string(name) + ", antilag " + std::to_string(int(antilag)));
+    }
+  }
+}
