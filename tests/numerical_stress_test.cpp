@@ -319,8 +319,11 @@ void require_reproduced(const Variant& v, const TestDevice& device, const Image&
         const double want = f.color.at(x, y, c), got = out.at(x, y, c);
         Interval b;
         if (v.space == Space::Regression) {
-          const double tolerance =
-              device.tolerance(regression_tolerance) * want + 8 * kSmallestSubnormal;
+          // Fast mode's QR (approximate square roots and reciprocals) as tests/bmfr_test.cpp
+          // holds it: 1e-3.
+          const double relative = device.fast() ? std::max(regression_tolerance, 1e-3)
+                                                : regression_tolerance;
+          const double tolerance = relative * want + 8 * kSmallestSubnormal;
           b = {want - tolerance, want + tolerance};
         } else {
           const double g = v.guard(f.albedo.at(x, y, c));
@@ -449,13 +452,17 @@ void subnormal(const TestDevice& device) {
   s.reproduces = [](int) { return true; };
   s.regression_spans = true;
   run_case(device, s);
-  // Positive: not flushed (checked on the last frame of each variant).
-  for (const Variant& v : variants(device)) {
-    INFO(v.name << " on " << device.name());
-    auto d = make_denoiser(v.config);
-    Image out;
-    for (int k = 0; k < kFrames; ++k) d->denoise(stress_frame(s, k), out);
-    for (float o : out.data()) REQUIRE(o > 0.f);
+  // Positive: not flushed (checked on the last frame of each variant). Exact modes only: fast
+  // mode's approximate exp and square root flush subnormal operands by design (core/arith.h),
+  // and its tolerance (1e-4 of max(|x|, 1e-3)) counts a flushed 3e-39 as equal.
+  if (!device.fast()) {
+    for (const Variant& v : variants(device)) {
+      INFO(v.name << " on " << device.name());
+      auto d = make_denoiser(v.config);
+      Image out;
+      for (int k = 0; k < kFrames; ++k) d->denoise(stress_frame(s, k), out);
+      REQUIRE(std::all_of(out.data().begin(), out.data().end(), [](float o) { return o > 0.f; }));
+    }
   }
   Case noisy{"subnormal noisy on subnormal albedo",
              [](int x, int y, int k, int c) { return 1e-39f * noise(x, y, k, c); },
