@@ -381,6 +381,17 @@ void zero_variance(const TestDevice& device) {
   s.name = "zero variance, black";
   s.color = constant(0.f);
   run_case(device, s);
+  // A sub-pixel pan: the history is read through 2x2 bilinear taps (renormalized where some
+  // fall outside), and still returns the constant within the slack.
+  s.name = "zero variance, sub-pixel motion";
+  s.color = constant(0.3f);
+  s.edit = [](Frame& f) {
+    for (size_t i = 0; i < f.color.pixel_count(); ++i) {
+      f.motion.plane(0)[i] = -0.37f;
+      f.motion.plane(1)[i] = 0.21f;
+    }
+  };
+  run_case(device, s);
 }
 
 // HDR: a constant 1e6 and the sanitize stage's largest radiance, 1e8, on zero albedo (SVGF
