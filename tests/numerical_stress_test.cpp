@@ -133,10 +133,16 @@ std::vector<Variant> variants(const TestDevice& device) {
     v.push_back({std::move(name), c, space});
   };
   const auto keep = [](DenoiserConfig&) {};
-  // The default runs A-SVGF's gradient anti-lag: the frames below carry gradient samples.
-  add("svgf default (antilag gradient)", Method::Svgf, Space::SvgfIllumination, keep);
+  // SVGF: the defaults, both anti-lags (the frames below carry gradient samples, so A-SVGF's
+  // gradient stages run), the presets.
+  add("svgf default", Method::Svgf, Space::SvgfIllumination, keep);
   add("svgf antilag statistics", Method::Svgf, Space::SvgfIllumination,
       [](DenoiserConfig& c) { c.svgf.antilag = Antilag::Statistics; });
+  add("svgf converge, antilag gradient", Method::Svgf, Space::SvgfIllumination,
+      [](DenoiserConfig& c) {
+        c.svgf = svgf_preset("converge");
+        c.svgf.antilag = Antilag::Gradient;
+      });
   add("svgf preset paper", Method::Svgf, Space::SvgfIllumination,
       [](DenoiserConfig& c) { c.svgf = svgf_preset("paper"); });
   add("svgf preset converge", Method::Svgf, Space::SvgfIllumination,
@@ -358,6 +364,12 @@ void run_case(const TestDevice& device, const Case& s,
       if (s.reproduces(k) && (v.space != Space::Regression || s.regression_spans))
         require_reproduced(v, device, out, f, k + 1);
       if (extra) extra(v, *d, f, k);
+      if (v.config.method == Method::Svgf && v.config.svgf.antilag == Antilag::Gradient && k > 0) {
+        const auto& ran = d->last_report().times.entries();
+        INFO("A-SVGF's gradient stages run on frames with gradient samples");
+        REQUIRE(std::any_of(ran.begin(), ran.end(),
+                            [](const auto& e) { return e.first == svgf_stage::kGradient; }));
+      }
     }
   }
 }
