@@ -64,9 +64,12 @@ json array(const std::vector<double>& v) {
 
 double db(double relmse) { return 10.0 * std::log10(relmse); }
 
+std::string frames_text(long n) { return std::to_string(n) + (n == 1 ? " frame" : " frames"); }
+
+// "2 frames", or "never within the 6 frames after" for -1.
 std::string lag_text(int lag, size_t change, size_t frames) {
-  if (lag >= 0) return std::to_string(lag) + (lag == 1 ? " frame" : " frames");
-  return "not within the " + std::to_string(frames - change) + " frames after";
+  if (lag >= 0) return frames_text(lag);
+  return "never within the " + std::to_string(frames - change) + " frames after";
 }
 
 Outcome verdict(bool pass) { return pass ? Outcome::Pass : Outcome::Fail; }
@@ -110,8 +113,8 @@ class Suite {
 
   // One row per method: `measure` turns the method's outputs into a row (method name set here).
   // A method that throws gets a row saying so, and the others still run.
-  void each_method(ScenarioResult& r, const StabilitySequence& seq,
-                   const std::function<StabilityRow(const StabilityMethod&, const std::vector<Image>&)>& measure) const {
+  using Measure = std::function<StabilityRow(const StabilityMethod&, const std::vector<Image>&)>;
+  void each_method(ScenarioResult& r, const StabilitySequence& seq, const Measure& measure) const {
     for (const StabilityMethod& m : methods_) {
       if (!options_.quiet) std::fprintf(stderr, "  %s: %s\n", r.name.c_str(), m.name.c_str());
       StabilityRow row;
@@ -273,7 +276,8 @@ ScenarioResult static_convergence(Suite& suite) {
     std::vector<double> psnr;
     for (const Image& im : out) psnr.push_back(metrics::psnr(im, reference));
     double drop = 0;
-    for (size_t k = kSettled; k + 1 < psnr.size(); ++k) drop = std::max(drop, psnr[k] - psnr[k + 1]);
+    for (size_t k = kSettled; k + 1 < psnr.size(); ++k)
+      drop = std::max(drop, psnr[k] - psnr[k + 1]);
     const double gain = psnr.back() - psnr[kSettled];
     StabilityRow row;
     row.value = "worst drop " + num(drop, 2) + " dB, gain " + signed_num(gain, 2) +
@@ -320,7 +324,7 @@ ScenarioResult camera_cut(Suite& suite) {
     for (size_t k = cut; k < loss.size(); ++k)
       diff += (diff.empty() ? "" : " ") + signed_num(base[k] - loss[k], 1);
     StabilityRow row;
-    row.value = "recovers in " + lag_text(lag, cut, loss.size()) + "; " + diff;
+    row.value = "frames to recover: " + lag_text(lag, cut, loss.size()) + "; " + diff;
     row.verdict = verdict(lag >= 0 && lag <= kMaxLag);
     std::vector<double> psnr;
     for (double l : loss) psnr.push_back(-l);
@@ -431,8 +435,9 @@ std::vector<ScenarioResult> static_fixture(Suite& suite, bool flicker_wanted, bo
   flicker.threshold =
       "at most twice the reference's own frame-to-frame change (" + num(ref_change, 5) +
       ", the noise of its 1024 samples; the 1-spp input changes by " + num(input_change, 4) +
-      "): an output that changes no more than a 1024-sample render does cannot be told from a "
-      "still image. Chosen from the reference alone, before any method was measured";
+      "): an output may flicker as much as a 1024-sample render of the scene does, with a "
+      "factor 2 of margin. The bar comes from the reference alone and was set before any "
+      "method was measured";
   flicker.bar = "<= " + num(flicker_bar, 5);
   flicker.reading =
       "A method without history redraws every frame from new 1-spp noise, and what its filter "
@@ -462,12 +467,12 @@ std::vector<ScenarioResult> static_fixture(Suite& suite, bool flicker_wanted, bo
   firefly.bar = "radius <= 2 px, <= 2 frames";
   firefly.reading =
       "No method of the suite rejects outliers before filtering (the sanitize stage replaces only "
-      "non-finite, negative or > 1e8 samples). Filters that weigh by colour keep the outlier in its "
-      "pixel (the JBF, the bilateral, the wavelet's luminance stop); a linear blur spreads it over "
-      "its footprint (`gaussian`: its 6 px radius); SVGF's variance-guided a-trous spreads it "
+      "non-finite, negative or > 1e8 samples). Filters that weigh by colour keep the outlier in its"
+      " pixel (the JBF, the bilateral, the wavelet's luminance stop); a linear blur spreads it over"
+      " its footprint (`gaussian`: its 6 px radius); SVGF's variance-guided a-trous spreads it "
       "10-17 px, and BMFR's per-block regression over its whole 32x32 block. A history keeps it: "
-      "SVGF's defaults flush it the next frame (the statistics anti-lag sees the history disagree), "
-      "`svgf converge`, `svgf paper` and BMFR keep it past the sequence's end. A firefly clamp "
+      "SVGF's defaults flush it the next frame (the statistics anti-lag sees the history disagree),"
+      " `svgf converge`, `svgf paper` and BMFR keep it past the sequence's end. A firefly clamp "
       "against the neighbourhood, as production denoisers have, is what would pass.";
 
   StabilitySequence injected = seq;
@@ -479,8 +484,12 @@ std::vector<ScenarioResult> static_fixture(Suite& suite, bool flicker_wanted, bo
 
   metrics::PixelMask window;  // the 33x33 pixels around the outlier
   window.inside.assign(hit.reference.pixel_count(), 0);
-  for (int y = std::max(0, fy - kFireflyWindow); y <= std::min(hit.height() - 1, fy + kFireflyWindow); ++y)
-    for (int x = std::max(0, fx - kFireflyWindow); x <= std::min(hit.width() - 1, fx + kFireflyWindow); ++x) {
+  const int x0 = std::max(0, fx - kFireflyWindow);
+  const int x1 = std::min(hit.width() - 1, fx + kFireflyWindow);
+  const int y0 = std::max(0, fy - kFireflyWindow);
+  const int y1 = std::min(hit.height() - 1, fy + kFireflyWindow);
+  for (int y = y0; y <= y1; ++y)
+    for (int x = x0; x <= x1; ++x) {
       window.inside[static_cast<size_t>(y) * hit.width() + x] = 1;
       ++window.count;
     }
@@ -520,8 +529,11 @@ std::vector<ScenarioResult> static_fixture(Suite& suite, bool flicker_wanted, bo
         }
         const int lasts = metrics::lag_frames(e_dirty, e_clean, kFireflyFrame, 0.1);
         firefly_row.value = "radius " + std::to_string(radius) + " px (" +
-                            std::to_string(most) + " pixels), back in " +
-                            lag_text(lasts, kFireflyFrame, n);
+                            std::to_string(most) + (most == 1 ? " pixel" : " pixels") +
+                            "), " +
+                            (lasts >= 0 ? "gone after " + frames_text(lasts)
+                                        : "still there " + frames_text(static_cast<long>(n) - 1 -
+                                                                       kFireflyFrame) + " later");
         firefly_row.verdict = verdict(radius <= 2 && lasts >= 0 && lasts <= kMaxLag);
         firefly_row.data = {{"radius", radius},        {"pixels", most},
                             {"frames", lasts},          {"error_db", array(e_dirty)},
@@ -565,7 +577,7 @@ ScenarioResult detail(Suite& suite, const std::string& scene, bool edges) {
       "output's Sobel gradient magnitudes with the reference's over the reference's strongest "
       "10% (the edge pixels), and the high-frequency ratio: the energy of luminance minus its "
       "3x3 mean, output over reference (1: detail kept, < 1: blurred, > 1: noise left). " +
-      (edges ? "The verdict is on the edge preservation." : "The verdict is on the ratio.");
+      (edges ? "The verdict is on the edge preservation" : "The verdict is on the ratio");
   if (edges) {
     r.threshold = "edge correlation at least 0.8 (issue 13 names the measure; the bar is this "
                   "suite's: at 0.8 the output's edge strengths explain two thirds of the "
@@ -637,7 +649,8 @@ std::vector<StabilityMethod> stability_methods(Backend backend, int threads) {
   for (const char* method : {"gaussian", "wavelet", "jbf", "jbf-atrous", "bmfr"})
     project(method, method);
   if (baselines_available() && backend == Backend::Cpu)
-    for (const Baseline& b : default_baselines()) v.push_back({b.label(), baseline_config(b, threads)});
+    for (const Baseline& b : default_baselines())
+      v.push_back({b.label(), baseline_config(b, threads)});
   return v;
 }
 
@@ -662,8 +675,8 @@ const char* to_string(Outcome v) {
 }
 
 void check_stability_options(const StabilityOptions& options) {
-  const auto check = [](const std::vector<std::string>& asked, const std::vector<std::string>& known,
-                        const char* what) {
+  const auto check = [](const std::vector<std::string>& asked,
+                        const std::vector<std::string>& known, const char* what) {
     for (const std::string& a : asked)
       if (std::find(known.begin(), known.end(), a) == known.end()) {
         std::string list;

@@ -51,7 +51,8 @@ TEST_CASE("detail: gradient magnitude and edge pixels of a step", "[metrics]") {
   // repeat the edge rows).
   for (int y = 0; y < 4; ++y)
     for (int x = 0; x < 8; ++x)
-      REQUIRE(g[static_cast<size_t>(y) * 8 + x] == Approx(x == 3 || x == 4 ? 0.5 : 0.0).margin(1e-12));
+      REQUIRE(g[static_cast<size_t>(y) * 8 + x] ==
+              Approx(x == 3 || x == 4 ? 0.5 : 0.0).margin(1e-12));
   // 10% of 32 pixels is 4, but the 8 tied at the cut all count; the flat rest never does.
   const std::vector<uint8_t> edge = edge_pixels(step, 0.1);
   int count = 0;
