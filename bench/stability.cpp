@@ -154,8 +154,8 @@ ScenarioResult moving_shadow(Suite& suite) {
       "after frame, below 0 once the old place is darker than the shadow. SVGF's defaults restart "
       "the pixels whose shading changed from the gradient samples. Filters whose footprint reaches "
       "across the shadow lighten it with or without history: the a-trous wavelet (4 passes of "
-      "5x5, 31 px) and the JBF (a 33x33 window; a colour sigma of 0.6 that this shadow's depth "
-      "does not stop) keep half to three quarters of it.";
+      "5x5, 31 px) and the JBF (a 33x33 window, weighted by colour with sigma 0.6) keep half to "
+      "three quarters of it.";
   if (!stability_can_render()) {
     r.skipped = "this build has no renderer";
     return r;

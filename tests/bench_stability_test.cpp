@@ -23,7 +23,8 @@ StabilityOptions tiny() {
   o.threads = 2;
   o.quiet = true;
   o.methods = {"svgf", "gaussian"};
-  o.sizes.shadow_width = o.sizes.shadow_height = 32;
+  o.sizes.shadow_width = 40;  // not square, as --full's 384x216
+  o.sizes.shadow_height = 24;
   o.sizes.shadow_frames = 5;
   o.sizes.shadow_reference_spp = 2;
   o.sizes.static_size = 16;
