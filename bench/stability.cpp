@@ -176,13 +176,16 @@ ScenarioResult moving_shadow(Suite& suite) {
     std::vector<double> ratio;
     bool pass = out.size() > 3;
     double worst = std::numeric_limits<double>::quiet_NaN();
+    bool undefined = false;  // a frame without a shadow or lit region: n/a is the worst
     for (size_t k = 0; k < out.size(); ++k) {
       ratio.push_back(metrics::shadow_contrast(out[k], regions[k]) / ref_contrast[k]);
       if (k < 3) continue;
-      const double off = std::abs(ratio[k] - 1.0);
       if (!(ratio[k] >= 0.75 && ratio[k] <= 1.25)) pass = false;
-      if (std::isnan(worst) || !(off <= std::abs(worst - 1.0))) worst = ratio[k];
+      undefined = undefined || std::isnan(ratio[k]);
+      if (!undefined && (std::isnan(worst) || std::abs(ratio[k] - 1.0) > std::abs(worst - 1.0)))
+        worst = ratio[k];
     }
+    if (undefined) worst = std::numeric_limits<double>::quiet_NaN();
     StabilityRow row;
     row.value = list(ratio, 2) + " (worst from frame 3: " + num(worst, 2) + ")";
     row.verdict = verdict(pass);
