@@ -1,5 +1,6 @@
 // svgf-bench: the benchmark binary (not a test). docs/benchmarks.md shows how its numbers are
 // made and what they mean.
+#include <array>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -17,6 +18,7 @@
 #include "bench/gpu_probe.h"
 #include "bench/host_probe.h"
 #include "bench/runner.h"
+#include "bench/stability.h"
 #include "bench/suites.h"
 #include "bench/workload.h"
 #include "io/atomic_file.h"
@@ -286,6 +288,52 @@ void add_chart_data(CLI::App& bench, int& status) {
   });
 }
 
+void add_stability(CLI::App& bench, const std::string& command, int& status) {
+  auto o = std::make_shared<svgf::bench::StabilityOptions>();
+  auto a = std::make_shared<std::array<std::string, 3>>();  // backend, methods, scenarios
+  (*a)[0] = "cpu";
+  o->command = command;
+  o->out_md = "docs/stability.md";
+  o->fixtures_root = default_fixtures();
+  o->cache_dir = SVGF_BENCH_CACHE_DIR;
+  CLI::App* st = bench.add_subcommand(
+      "stability", "issue 13's scenario suite: every method, thresholds, pass/fail (docs/stability.md)");
+  st->footer(
+      "Scenarios: moving-shadow, light-switch, static-convergence, camera-cut, disocclusion,\n"
+      "flicker, fireflies, thin-edges, texture-detail. The reduced suite (the default) reads the\n"
+      "committed fixtures and renders moving-shadow at 192x192 (8 frames, 64-sample references)\n"
+      "and cornell-static at 64x64 (64 frames); --full renders them at 384x216 (16 frames, 256)\n"
+      "and 128x128. Failed thresholds are findings: the exit status is 0 when the suite ran.");
+  st->add_option("--out", o->out_md, "the page (default docs/stability.md; '' = none)")
+      ->type_name("FILE");
+  st->add_option("--json", o->out_json, "also the numbers as JSON")->type_name("FILE");
+  st->add_flag("--full", o->full, "render the larger sequences (slow on a few cores)");
+  st->add_option("--backend", (*a)[0], "(default cpu)")
+      ->type_name("cpu|cuda")
+      ->check(svgf::cli::accepted_by(svgf::parse_backend));
+  st->add_option("--threads", o->threads, "CPU threads, 0 = all cores (default 0)")
+      ->type_name("N")->check(CLI::Range(0, 1024));
+  st->add_option("--cache", o->cache_dir, "where rendered sequences are kept ('' = none)")
+      ->type_name("DIR");
+  st->add_option("--fixtures", o->fixtures_root, "the committed fixtures (default fixtures)")
+      ->type_name("DIR");
+  st->add_option("--methods", (*a)[1], "only these methods (names as in the tables)")
+      ->type_name("A,B");
+  st->add_option("--scenarios", (*a)[2], "only these scenarios")->type_name("A,B");
+  st->callback([o, a, &status] {
+    o->backend = svgf::parse_backend((*a)[0]);
+    o->methods = split_commas((*a)[1]);
+    o->scenarios = split_commas((*a)[2]);
+    if (o->full) o->sizes = svgf::bench::full_sizes();
+    try {
+      svgf::bench::check_stability_options(*o);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(e.what());
+    }
+    status = svgf::bench::stability_command(*o);
+  });
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -299,6 +347,7 @@ int main(int argc, char** argv) {
   add_run(bench, command, status);
   add_suite(bench, command, status);
   add_chart_data(bench, status);
+  add_stability(bench, command, status);
   // Without a subcommand (`svgf-bench --size 64x64 ...`) the options are run's.
   std::vector<char*> args(argv, argv + argc);
   std::string run = "run";
