@@ -278,15 +278,13 @@ ScenarioResult static_convergence(Suite& suite) {
   suite.each_method(r, seq, [&](const StabilityMethod&, const std::vector<Image>& out) {
     std::vector<double> psnr;
     for (const Image& im : out) psnr.push_back(metrics::psnr(im, reference));
-    double drop = 0;
-    for (size_t k = kSettled; k + 1 < psnr.size(); ++k)
-      drop = std::max(drop, psnr[k] - psnr[k + 1]);
-    const double gain = psnr.back() - psnr[kSettled];
+    const metrics::StaticConvergence c = metrics::static_convergence(psnr, kSettled);
+    const double drop = c.worst_drop, gain = c.gain;
     StabilityRow row;
     row.value = "worst drop " + num(drop, 2) + " dB, gain " + signed_num(gain, 2) +
                 " dB (frame 4: " + num(psnr[kSettled], 2) + " dB, frame " +
                 std::to_string(psnr.size() - 1) + ": " + num(psnr.back(), 2) + " dB)";
-    row.verdict = verdict(drop <= 0.1 && gain >= 2.0);
+    row.verdict = verdict(c.meets_rule());
     row.data = {{"worst_drop_db", drop}, {"gain_db", gain}, {"psnr", array(psnr)}};
     return row;
   });

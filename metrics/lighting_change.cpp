@@ -160,4 +160,14 @@ std::vector<double> restart_baseline(const std::vector<double>& error_db, size_t
   return b;
 }
 
+StaticConvergence static_convergence(const std::vector<double>& psnr, size_t settled) {
+  if (psnr.size() <= settled)
+    throw std::invalid_argument("static_convergence: needs frames after the settled one");
+  StaticConvergence c;
+  for (size_t k = settled; k + 1 < psnr.size(); ++k)
+    c.worst_drop = std::max(c.worst_drop, psnr[k] - psnr[k + 1]);
+  c.gain = psnr.back() - psnr[settled];
+  return c;
+}
+
 }  // namespace svgf::metrics

@@ -80,4 +80,15 @@ int lag_frames(const std::vector<double>& error_db, const std::vector<double>& b
 // frames; one that keeps the old light lags until its history forgets it.
 std::vector<double> restart_baseline(const std::vector<double>& error_db, size_t change);
 
+// A still scene's convergence (issue 12, item 4) from its PSNR per frame: the largest drop from
+// one frame to the next after frame `settled`, and the gain from frame `settled` to the last.
+// The rule: no drop above 0.1 dB, a gain of at least 2 dB (by frame 63). Needs more frames than
+// `settled`.
+struct StaticConvergence {
+  double worst_drop = 0;  // dB
+  double gain = 0;        // dB
+  bool meets_rule() const { return worst_drop <= 0.1 && gain >= 2.0; }
+};
+StaticConvergence static_convergence(const std::vector<double>& psnr, size_t settled = 4);
+
 }  // namespace svgf::metrics

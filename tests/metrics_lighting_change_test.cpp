@@ -109,3 +109,14 @@ TEST_CASE("lighting change: lag", "[metrics]") {
   const std::vector<double> kept = {-10, -14, -16, -5, -7, -9};
   REQUIRE(lag_frames(kept, restart_baseline(kept, 3), 3) == -1);
 }
+
+TEST_CASE("lighting change: a still scene's convergence", "[metrics]") {
+  // Frames 0..3 are not judged; after frame 4 the largest drop is 32.0 -> 31.8.
+  const std::vector<double> psnr = {20, 25, 28, 29, 30, 31, 32, 31.8, 32.5};
+  const StaticConvergence c = static_convergence(psnr);
+  REQUIRE(c.worst_drop == Approx(0.2));
+  REQUIRE(c.gain == Approx(2.5));
+  REQUIRE_FALSE(c.meets_rule());
+  REQUIRE(static_convergence({30, 30, 30, 30, 30, 30.5, 32.1}).meets_rule());
+  REQUIRE_THROWS(static_convergence({30, 31, 32, 33}));
+}

@@ -15,6 +15,7 @@
 #include "gbuffer/renderer.h"
 #include "gbuffer/scenes.h"
 #include "metrics/image_metrics.h"
+#include "metrics/lighting_change.h"
 #include "pipeline/make_denoiser.h"
 
 using namespace svgf;
@@ -63,19 +64,6 @@ std::vector<double> psnr_per_frame(const SvgfParams& params) {
   return psnr;
 }
 
-struct Convergence {
-  double worst_drop = 0;  // largest frame-to-frame drop after frame 4, dB
-  double gain = 0;        // last frame - frame 4, dB
-};
-
-Convergence convergence(const std::vector<double>& psnr) {
-  Convergence c;
-  for (size_t k = 4; k + 1 < psnr.size(); ++k)
-    c.worst_drop = std::max(c.worst_drop, psnr[k] - psnr[k + 1]);
-  c.gain = psnr.back() - psnr[4];
-  return c;
-}
-
 std::string curve(const std::vector<double>& psnr) {
   std::string s;
   char buf[16];
@@ -97,8 +85,9 @@ TEST_CASE("svgf: the defaults and the converging configuration converge on a sta
   // statistics rule instead (docs/svgf.md: Defaults).
   const std::vector<double> converge = psnr_per_frame(svgf_preset("converge"));
   for (const char* name : {"default", "converge"}) {
-    const std::vector<double> psnr = psnr_per_frame(svgf_preset(name));
-    const Convergence c = convergence(psnr);
+    const std::vector<double> psnr =
+        std::string(name) == "converge" ? converge : psnr_per_frame(svgf_preset(name));
+    const metrics::StaticConvergence c = metrics::static_convergence(psnr);
     INFO(name << ": worst drop " << c.worst_drop << " dB, gain " << c.gain
               << " dB; PSNR per frame:" << curve(psnr));
     CHECK(c.worst_drop <= 0.1);
@@ -115,7 +104,7 @@ TEST_CASE("svgf: Falcor's (the defaults until issue 12) and the paper's configur
   // these passed, the scene would not be testing convergence.
   for (const char* name : {"falcor", "paper"}) {
     const std::vector<double> psnr = psnr_per_frame(svgf_preset(name));
-    const Convergence c = convergence(psnr);
+    const metrics::StaticConvergence c = metrics::static_convergence(psnr);
     INFO(name << ": worst drop " << c.worst_drop << " dB, gain " << c.gain
               << " dB; PSNR per frame:" << curve(psnr));
     CHECK_FALSE((c.worst_drop <= 0.1 && c.gain >= 2.0));
