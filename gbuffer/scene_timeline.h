@@ -5,6 +5,7 @@
 // story in four times as many, smaller steps and its events (the camera cut of `cut` and the
 // switch of `light-switch`, both at time 6) fall at half its length, after the history has
 // settled. At the default length the scene is returned as it is: the same bits as before.
+// `svgf-fixtures eval` renders its sequences so; `generate` shows one time unit per frame.
 #include "gbuffer/scene.h"
 
 namespace svgf::gbuffer {

@@ -486,8 +486,8 @@ TEST_CASE("re-rendering a committed fixture's frame reproduces it", "[gbuffer][f
     s.reference_spp = 0;  // the 1024-spp reference is left to `svgf-fixtures verify`
     const Frame stored = seq.read(c.frame);
     s.gradients = !stored.gradient.empty();
-    // As generate and verify render it: the story spread over the sequence's length, which at
-    // the committed length is the scene itself, bit for bit.
+    // Spread over the sequence's length as `eval` spreads its scenes: at the committed length
+    // that is the scene itself, bit for bit.
     const Frame fresh = renderer().render(scene_over(find_scene(name), seq.size()), c.frame, s);
     CompareOptions options;
     options.reference = false;

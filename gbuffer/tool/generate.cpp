@@ -10,7 +10,6 @@
 
 #include "gbuffer/fixture_format.h"
 #include "gbuffer/renderer.h"
-#include "gbuffer/scene_timeline.h"
 #include "gbuffer/scenes.h"
 #include "io/sequence.h"
 #include "cli/command_line.h"
@@ -24,7 +23,7 @@ namespace svgf::gbuffer::tool {
 namespace {
 
 struct Job {
-  SceneDesc scene;  // spread over `frames` (scene_timeline.h)
+  const SceneDesc* scene;
   RenderSettings settings;
   int frames;
 };
@@ -37,7 +36,7 @@ uint64_t folder_bytes(const fs::path& dir) {
 }
 
 void generate_one(const Renderer& renderer, const Job& job, const fs::path& out) {
-  const SceneDesc& scene = job.scene;
+  const SceneDesc& scene = *job.scene;
   io::Manifest m;
   m.scene = scene.name;
   m.width = job.settings.width;
@@ -111,8 +110,7 @@ int run_generate(const GenerateArgs& a) {
       for (const SceneDesc& s : scene_library()) scenes.push_back(&s);
     for (const std::string& n : names) scenes.push_back(&find_scene(n));
     for (const SceneDesc* s : scenes) {
-      const int n = frames.value_or(s->frames);
-      Job j{scene_over(*s, n), RenderSettings{}, n};
+      Job j{s, RenderSettings{}, frames.value_or(s->frames)};
       j.settings.width = width.value_or(s->width);
       j.settings.height = height.value_or(s->height);
       j.settings.spp = spp.value_or(s->spp);
@@ -153,7 +151,7 @@ void add_generate(CLI::App& tool, int& status) {
       ->type_name("NAME");
   sub->add_flag("--all", a->all, "every scene");
   sub->add_option("--size", a->size, "image size (default: the scene's)")->type_name("WxH");
-  sub->add_option("--frames", a->frames, "frames, the scene's story spread over them (default: the scene's)")
+  sub->add_option("--frames", a->frames, "frames (default: the scene's)")
       ->type_name("N")->check(CLI::Range(1, 100000));
   sub->add_option("--spp", a->spp, "samples per pixel (default: the scene's)")
       ->type_name("N")->check(CLI::Range(1, kMaxSpp));
