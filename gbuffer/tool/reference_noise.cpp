@@ -4,7 +4,10 @@
 // 10 log10(2) = 3.01 dB better.
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <filesystem>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -13,6 +16,7 @@
 
 #include "gbuffer/eval_set.h"
 #include "gbuffer/renderer.h"
+#include "io/png.h"
 #include "metrics/image_metrics.h"
 #include "cli/command_line.h"
 #include "tool/commands.h"
@@ -27,7 +31,22 @@ struct NoiseArgs {
   int threads = 0;
   std::string size;
   std::optional<int> reference_spp;
+  std::string diff_dir;
 };
+
+// Where the two references differ: |A - B| after the clamp to [0, 1] PSNR applies, mean over
+// RGB, x4 (white: 0.25 or more), as a gray PNG.
+void write_difference_png(const std::string& path, const Image& a, const Image& b) {
+  std::vector<uint8_t> gray(a.pixel_count() * 3);
+  for (size_t i = 0; i < a.pixel_count(); ++i) {
+    float sum = 0.f;
+    for (int c = 0; c < 3; ++c)
+      sum += std::fabs(std::clamp(a.plane(c)[i], 0.f, 1.f) - std::clamp(b.plane(c)[i], 0.f, 1.f));
+    const float v = std::min(1.f, 4.f * sum / 3.f);
+    gray[3 * i] = gray[3 * i + 1] = gray[3 * i + 2] = static_cast<uint8_t>(std::lround(v * 255.f));
+  }
+  io::write_png_rgb8(path, gray.data(), a.width(), a.height());
+}
 
 int run_reference_noise(const NoiseArgs& a) {
   EvalParams params;
@@ -64,6 +83,12 @@ int run_reference_noise(const NoiseArgs& a) {
                 params.width, params.height, params.reference_spp, between,
                 between + 10.0 * std::log10(2.0));
     std::fflush(stdout);
+    if (!a.diff_dir.empty()) {
+      std::filesystem::create_directories(a.diff_dir);
+      write_difference_png(
+          (std::filesystem::path(a.diff_dir) / (s.scene.name + "_reference_noise.png")).string(),
+          fa.reference, fb.reference);
+    }
   }
   return 0;
 }
@@ -84,6 +109,9 @@ void add_reference_noise(CLI::App& tool, int& status) {
   sub->add_option("--size", a->size, "image size (default: the set's)")->type_name("WxH");
   sub->add_option("--reference-spp", a->reference_spp, "reference samples (default: the set's)")
       ->type_name("N")->check(CLI::Range(1, kMaxSpp));
+  sub->add_option("--diff", a->diff_dir,
+                  "also write DIR/<scene>_reference_noise.png: |A - B| per pixel, x4, gray")
+      ->type_name("DIR");
   sub->add_option("--threads", a->threads, "render threads (default: all cores)")
       ->type_name("N")->check(CLI::Range(1, 1024));
   sub->callback([a, &status] { status = run_reference_noise(*a); });
