@@ -62,7 +62,7 @@ std::string stability_page(const StabilityOptions& o, const std::vector<Scenario
     << "under each table says what makes methods fail it; it was written from the reduced suite's "
     << "results on the CPU, and the numbers it quotes are that run's.\n\n";
   if (!o.full)
-    p << "This is the reduced suite: the committed fixtures (64x64 and 128x128, 12 frames) and "
+    p << "This is the reduced suite: the committed fixtures (64x64 to 128x128, 12 frames) and "
       << "small sequences rendered on demand; `--full` renders larger ones.\n\n";
 
   // Summary: per method, the scenarios it fails.

@@ -11,7 +11,7 @@
 
 namespace svgf::gbuffer {
 
-inline constexpr int kGeneratorVersion = 2;  // bump whenever any output bit changes
+inline constexpr int kGeneratorVersion = 3;  // bump whenever any output bit changes (3: moving-shadow remade)
 std::string generator_tag();                 // "svgf-fixtures 1"
 
 // Half for color, reference, direct, indirect, albedo, normal and position (position follows

@@ -13,7 +13,7 @@
 #include <catch2/catch.hpp>
 #include <cuda_runtime_api.h>
 
-#include "gpu_test_support.h"
+#include "gpu_test_options.h"
 #include "kernels_cuda/cuda_denoisers.h"
 
 namespace fs = std::filesystem;

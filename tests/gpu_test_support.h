@@ -20,35 +20,10 @@
 #include "kernels_cuda/device_array.h"
 #include "methods/svgf/pipeline.h"
 #include "test_device.h"
+#include "gpu_test_options.h"
 #include "test_support.h"
 
 namespace svgf::gpu_test {
-
-struct Options {
-  bool reduced = false;  // fewer sizes and frames (compute-sanitizer runs)
-  int max_frames = 0;    // per fixture sequence; 0: all
-  std::string fixtures_dir;
-};
-Options& options();
-
-// What the run compared, printed by main at the end (docs/cuda.md quotes it).
-struct Tally {
-  int64_t stage_runs = 0;       // single-stage CPU vs GPU comparisons
-  int64_t stage_values = 0;     // values compared bitwise in them
-  int64_t frames = 0;           // pipeline frames compared bitwise (CPU vs CUDA exact)
-  int64_t frame_values = 0;
-  int64_t determinism_frames = 0;
-  int64_t fast_frames = 0;      // fast-mode frames checked against the tolerance
-  double fast_worst_relmse = 0;
-  std::string fast_worst_relmse_at;
-  double fast_worst_psnr_delta = 0;
-  std::string fast_worst_psnr_at;
-  std::vector<std::string> sequences;
-};
-Tally& tally();
-
-// Fixture folders (those holding manifest.json), sorted by name.
-std::vector<std::string> fixture_dirs();
 
 // Frames of a sequence to use under the current options.
 inline int frames_to_use(int available, int reduced_cap) {
