@@ -17,6 +17,7 @@
 #include "gbuffer/gbuffer.h"
 #include "gbuffer/renderer.h"
 #include "gbuffer/rng.h"
+#include "gbuffer/scene_timeline.h"
 #include "gbuffer/scenes.h"
 #include "gbuffer/shapes.h"
 #include "gbuffer/vec_ops.h"
@@ -485,7 +486,9 @@ TEST_CASE("re-rendering a committed fixture's frame reproduces it", "[gbuffer][f
     s.reference_spp = 0;  // the 1024-spp reference is left to `svgf-fixtures verify`
     const Frame stored = seq.read(c.frame);
     s.gradients = !stored.gradient.empty();
-    const Frame fresh = renderer().render(find_scene(name), c.frame, s);
+    // Spread over the sequence's length as `eval` spreads its scenes: at the committed length
+    // that is the scene itself, bit for bit.
+    const Frame fresh = renderer().render(scene_over(find_scene(name), seq.size()), c.frame, s);
     CompareOptions options;
     options.reference = false;
     const std::vector<ChannelDiff> diffs = compare_frames(stored, fresh, fixture_storage(), options);

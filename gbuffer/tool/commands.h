@@ -13,6 +13,8 @@ using cli::UsageError;
 void add_generate(CLI::App& tool, int& status);
 void add_verify(CLI::App& tool, int& status);
 void add_list(CLI::App& tool, int& status);
+void add_eval(CLI::App& tool, int& status);
+void add_reference_noise(CLI::App& tool, int& status);
 
 // Default fixture folder: <source tree>/fixtures (SVGF_FIXTURES_DIR at build time).
 std::string default_fixture_dir();

@@ -1,6 +1,7 @@
 // svgf-fixtures list: the built-in scenes and their defaults.
 #include <cstdio>
 
+#include "gbuffer/eval_set.h"
 #include "gbuffer/scenes.h"
 #include "cli/command_line.h"
 #include "tool/commands.h"
@@ -21,6 +22,7 @@ int run_list() {
                 s.gradients ? "yes" : "-", s.summary.c_str());
   }
   std::printf("default output folder: %s/<scene>\n", default_fixture_dir().c_str());
+  std::printf("evaluation set (svgf-fixtures eval): %s/<scene>\n", default_eval_dir().c_str());
   return 0;
 }
 

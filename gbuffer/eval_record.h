@@ -1,0 +1,31 @@
+#pragma once
+// eval.json, the evaluation set's record of one sequence folder (eval_set.h): the parameters it
+// is rendered with and the SHA-256 of each frame written so far, so a later run can tell which
+// frames to keep and whether the parameters changed.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace svgf::gbuffer {
+
+struct EvalRecord {
+  std::string scene;
+  std::string generator;  // generator_tag()
+  int width = 0, height = 0, frames = 0, spp = 0, reference_spp = 0;
+  uint64_t seed = 0;
+  bool split = false, gradients = false;
+  std::vector<std::string> sha256;  // per frame; "" where none is written yet
+
+  bool complete() const;
+};
+
+// The parameters that differ, as "size 320x180 in the cache, 640x360 asked" phrases.
+std::vector<std::string> parameter_differences(const EvalRecord& cached, const EvalRecord& wanted);
+
+// <dir>/eval.json. read: nullopt when absent; throws std::runtime_error naming the file when it
+// cannot be parsed. write: atomically.
+std::optional<EvalRecord> read_eval_record(const std::string& dir);
+void write_eval_record(const std::string& dir, const EvalRecord& record);
+
+}  // namespace svgf::gbuffer
