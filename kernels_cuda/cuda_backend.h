@@ -15,6 +15,7 @@
 #include "kernels_cuda/cuda_engine.h"
 #include "kernels_cuda/cuda_handles.h"
 #include "kernels_cuda/device_array.h"
+#include "kernels_cuda/host_staging.h"
 
 namespace svgf::cuda {
 
@@ -24,7 +25,7 @@ class CudaBackend {
   using Buffer = DeviceArray<float>;
 
   explicit CudaBackend(const EngineConfig& config)
-      : mode_(config.mode), engine_(checked_shape(config)) {
+      : mode_(config.mode), engine_(checked_shape(config)), host_copies_(config.threads) {
     SVGF_CUDA_CHECK(cudaGetDevice(&device_), "cudaGetDevice");
   }
 
@@ -102,8 +103,8 @@ class CudaBackend {
     return im;
   }
 
-  // Uploads the frame: its planes copied into pinned memory, then one DMA transfer, timed as
-  // the engine's upload stage.
+  // Uploads the frame: its planes copied into pinned memory on the host's cores (HostStaging),
+  // then one DMA transfer, timed as the engine's upload stage.
   // `position`: the method reads world positions, uploaded into a buffer of their own (made on
   // the first request), so the methods that do not read them do not pay for them. `split`:
   // direct and indirect (the frame carries both), likewise in a buffer of their own.
@@ -114,7 +115,7 @@ class CudaBackend {
     const size_t n = pixels();
     float* staging = staging_in_.get();
     auto stage = [&](const float* src, int plane) {
-      std::memcpy(staging + plane * n, src, n * sizeof(float));
+      host_copies_.add(staging + plane * n, src, n * sizeof(float));
     };
     for (int c = 0; c < 3; ++c) {
       stage(in.color.plane(c), kColor + c);
@@ -126,7 +127,7 @@ class CudaBackend {
     stage(in.depth_gradient.plane(1), kDepthDy);
     stage(in.motion.plane(0), kMotionX);
     stage(in.motion.plane(1), kMotionY);
-    std::memcpy(staging + kMeshId * n, in.mesh_id.data(), n * sizeof(uint32_t));
+    host_copies_.add(staging + kMeshId * n, in.mesh_id.data(), n * sizeof(uint32_t));
     const bool emission = !in.emission.empty();
     if (emission)
       for (int c = 0; c < 3; ++c) stage(in.emission.plane(c), kEmission + c);
@@ -136,25 +137,26 @@ class CudaBackend {
     // The optional planes come last: the upload stops after the last one the frame has (a
     // frame with gradient samples but no emission sends the unused emission planes along).
     const int planes = gradient ? kInputPlanes : (emission ? kGradient : kRequiredPlanes);
-    engine_.mark(kUploadStage);
-    inputs_[slot_].upload_async(staging, planes * n, engine_.stream());
     if (position) {
       if (position_.size() != 3 * n) {
         allocate(position_, 3, "world positions");
         staging_position_.resize(3 * n, "the pinned position staging buffer");
       }
-      std::memcpy(staging_position_.get(), in.position.plane(0), 3 * n * sizeof(float));
-      position_.upload_async(staging_position_.get(), 3 * n, engine_.stream());
+      host_copies_.add(staging_position_.get(), in.position.plane(0), 3 * n * sizeof(float));
     }
     if (split) {
       if (split_.size() != 6 * n) {
         allocate(split_, 6, "direct and indirect");
         staging_split_.resize(6 * n, "the pinned direct and indirect staging buffer");
       }
-      std::memcpy(staging_split_.get(), in.direct.plane(0), 3 * n * sizeof(float));
-      std::memcpy(staging_split_.get() + 3 * n, in.indirect.plane(0), 3 * n * sizeof(float));
-      split_.upload_async(staging_split_.get(), 6 * n, engine_.stream());
+      host_copies_.add(staging_split_.get(), in.direct.plane(0), 3 * n * sizeof(float));
+      host_copies_.add(staging_split_.get() + 3 * n, in.indirect.plane(0), 3 * n * sizeof(float));
     }
+    host_copies_.run();
+    engine_.mark(kUploadStage);
+    inputs_[slot_].upload_async(staging, planes * n, engine_.stream());
+    if (position) position_.upload_async(staging_position_.get(), 3 * n, engine_.stream());
+    if (split) split_.upload_async(staging_split_.get(), 6 * n, engine_.stream());
     FrameInputs f;
     f.guides = guides(slot_);
     f.color = rgb(inputs_[slot_], kColor);
@@ -183,7 +185,8 @@ class CudaBackend {
     output_.download_async(staging_out_.get(), 3 * n, engine_.stream());
     engine_.end_frame();
     out.ensure_shape(width_, height_, 3);  // overwritten whole by the copy below
-    std::memcpy(out.data().data(), staging_out_.get(), 3 * n * sizeof(float));
+    host_copies_.add(out.data().data(), staging_out_.get(), 3 * n * sizeof(float));
+    host_copies_.run();
     slot_ = 1 - slot_;
   }
 
@@ -280,6 +283,7 @@ class CudaBackend {
   int method_planes_ = 0;
   Buffer inputs_[2], output_, position_, split_;
   PinnedBuffer<float> staging_in_, staging_out_, staging_position_, staging_split_;
+  HostStaging host_copies_;
 };
 
 }  // namespace svgf::cuda

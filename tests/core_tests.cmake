@@ -11,3 +11,7 @@ svgf_add_device_tests(svgf_stage_tests
           svgf_atrous_test.cpp svgf_gradient_test.cpp wavelet_test.cpp jbf_test.cpp bmfr_test.cpp
           taa_test.cpp
   LIBS svgf_cpu svgf_pipeline svgf_io svgf_metrics)
+# The CUDA backend's host-side code that needs no device (runs in CI).
+if(TARGET svgf_cuda)
+  svgf_add_tests(svgf_cuda_host_tests SOURCES cuda_host_staging_test.cpp LIBS svgf_cuda)
+endif()
