@@ -74,6 +74,22 @@ std::string lag_text(int lag, size_t change, size_t frames) {
 
 Outcome verdict(bool pass) { return pass ? Outcome::Pass : Outcome::Fail; }
 
+// Keeps the frame the page shows of a failed row (ScenarioResult::shown_*). The OpenCV
+// baselines' outputs are left out: reference points, not methods of the suite, and the images
+// are committed.
+void keep_if_failed(ScenarioResult& r, const StabilityRow& row, const StabilitySequence& seq,
+                    const std::vector<Image>& out) {
+  if (row.verdict != Outcome::Fail || r.shown_frame < 0 || row.method.rfind("cv-", 0) == 0)
+    return;
+  const size_t k = static_cast<size_t>(r.shown_frame);
+  if (k >= out.size() || k >= seq.frames.size()) return;
+  if (r.shown_failures.empty()) {
+    r.shown_input = seq.frames[k].color;
+    r.shown_reference = seq.frames[k].reference;
+  }
+  r.shown_failures.emplace_back(row.method, out[k]);
+}
+
 // What every scenario shares: the options, the methods, the fixtures read once.
 class Suite {
  public:
@@ -118,14 +134,17 @@ class Suite {
     for (const StabilityMethod& m : methods_) {
       if (!options_.quiet) std::fprintf(stderr, "  %s: %s\n", r.name.c_str(), m.name.c_str());
       StabilityRow row;
+      std::vector<Image> out;
       try {
-        row = measure(m, denoise_sequence(m.config, seq));
+        out = denoise_sequence(m.config, seq);
+        row = measure(m, out);
       } catch (const std::exception& e) {
         row = StabilityRow{};
         row.value = std::string("did not run: ") + e.what();
         row.verdict = Outcome::NotMeasured;
       }
       row.method = m.name;
+      keep_if_failed(r, row, seq, out);
       r.rows.push_back(std::move(row));
     }
   }
@@ -173,6 +192,7 @@ ScenarioResult moving_shadow(Suite& suite) {
     regions.push_back(finder.regions(k));
     ref_contrast.push_back(metrics::shadow_contrast(refs[k], regions.back()));
   }
+  r.shown_frame = static_cast<int>(seq.frames.size()) - 1;  // the last frame
   suite.each_method(r, seq, [&](const StabilityMethod&, const std::vector<Image>& out) {
     std::vector<double> ratio;
     bool pass = out.size() > 3;
@@ -229,6 +249,7 @@ ScenarioResult light_switch(Suite& suite) {
   const metrics::PixelMask changed = metrics::changed_pixels(
       seq.frames[kChange - 1].reference, seq.frames[kChange].reference,
       seq.frames[kChange - 1].mesh_id, seq.frames[kChange].mesh_id);
+  r.shown_frame = static_cast<int>(kChange) + 1;  // the frame after the switch
   suite.each_method(r, seq, [&](const StabilityMethod&, const std::vector<Image>& out) {
     const std::vector<double> e = masked_error_db(out, seq, changed);
     const std::vector<double> base = metrics::restart_baseline(e, kChange);
@@ -276,6 +297,7 @@ ScenarioResult static_convergence(Suite& suite) {
   for (const Frame& f : seq.frames)
     for (size_t i = 0; i < reference.data().size(); ++i)
       reference.data()[i] += f.reference.data()[i] / static_cast<float>(seq.frames.size());
+  r.shown_frame = static_cast<int>(seq.frames.size()) - 1;  // the last frame
   suite.each_method(r, seq, [&](const StabilityMethod&, const std::vector<Image>& out) {
     std::vector<double> psnr;
     for (const Image& im : out) psnr.push_back(metrics::psnr(im, reference));
@@ -316,6 +338,7 @@ ScenarioResult camera_cut(Suite& suite) {
   if (seq.cuts.empty() || seq.cuts[0] < 1)
     throw std::invalid_argument("stability: the `cut` fixture lists no camera cut");
   const size_t cut = static_cast<size_t>(seq.cuts[0]);
+  r.shown_frame = static_cast<int>(cut) + 1;  // the frame after the cut
   suite.each_method(r, seq, [&](const StabilityMethod&, const std::vector<Image>& out) {
     std::vector<double> loss;  // -PSNR: lower is better, as lag_frames wants
     for (size_t k = 0; k < out.size(); ++k)
@@ -372,6 +395,7 @@ ScenarioResult disocclusion(Suite& suite) {
     return r;
   }
   r.input += "; " + std::to_string(uncovered.size()) + " frames with uncovered pixels";
+  r.shown_frame = static_cast<int>(seq.frames.size()) - 1;  // the last frame
   suite.each_method(r, seq, [&](const StabilityMethod& m, const std::vector<Image>& out) {
     int worst = 0;
     double excess = 0;
@@ -496,6 +520,8 @@ std::vector<ScenarioResult> static_fixture(Suite& suite, bool flicker_wanted, bo
       ++window.count;
     }
 
+  flicker.shown_frame = static_cast<int>(n) - 1;  // the last frame
+  firefly.shown_frame = kFireflyFrame;             // the frame with the outlier
   // One clean run per method serves both scenarios.
   for (const StabilityMethod& m : suite.methods()) {
     if (!suite.options().quiet)
@@ -515,6 +541,7 @@ std::vector<ScenarioResult> static_fixture(Suite& suite, bool flicker_wanted, bo
       flicker_row.verdict = verdict(change <= flicker_bar);
       flicker_row.data = {{"output_change", change}, {"per_frame", array(per)},
                           {"reference_change", ref_change}};
+      keep_if_failed(flicker, flicker_row, seq, clean);
       if (firefly_wanted) {
         const std::vector<Image> dirty = denoise_sequence(m.config, injected);
         int radius = -1;
@@ -540,6 +567,7 @@ std::vector<ScenarioResult> static_fixture(Suite& suite, bool flicker_wanted, bo
         firefly_row.data = {{"radius", radius},        {"pixels", most},
                             {"frames", lasts},          {"error_db", array(e_dirty)},
                             {"clean_error_db", array(e_clean)}};
+        keep_if_failed(firefly, firefly_row, injected, dirty);
       }
     } catch (const std::exception& e) {
       flicker_row.value = firefly_row.value = std::string("did not run: ") + e.what();
@@ -597,6 +625,7 @@ ScenarioResult detail(Suite& suite, const std::string& scene, bool edges) {
       "included (ratios 0.01-0.09 on `textured`). Residual 1-spp noise counts as high-frequency "
       "energy too: the bilateral and NL-means keep so much noise (ratios above 1.25) that their "
       "edges drown. The wavelet and BMFR sit just under 0.8 on `thin`.";
+  r.shown_frame = static_cast<int>(seq.frames.size()) - 1;  // the last frame
   suite.each_method(r, seq, [&](const StabilityMethod&, const std::vector<Image>& out) {
     double corr = 0, ratio = 0;
     std::vector<double> corr_k, ratio_k;

@@ -6,6 +6,7 @@
 // from issues 12 and 13.
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bench/run_config.h"
@@ -67,6 +68,11 @@ struct ScenarioResult {
   std::string reading;    // why methods fail it (mechanisms, not numbers)
   std::string skipped;    // non-empty: not run, and why
   std::vector<StabilityRow> rows;
+  // What shows a failure on the page: frame `shown_frame` of the input, its reference and the
+  // output of each of the suite's own methods that failed (-1: the scenario shows no frame).
+  int shown_frame = -1;
+  Image shown_input, shown_reference;
+  std::vector<std::pair<std::string, Image>> shown_failures;
 };
 
 // std::invalid_argument naming an unknown method or scenario, or an output whose folder does not

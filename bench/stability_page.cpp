@@ -1,6 +1,8 @@
 // The stability suite's page (docs/stability.md), its JSON, and the command that writes them.
+#include <algorithm>
 #include <cstdio>
 #include <ctime>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -9,7 +11,9 @@
 #include "bench/gpu_probe.h"
 #include "bench/host_probe.h"
 #include "bench/stability.h"
+#include "core/tonemap.h"
 #include "io/atomic_file.h"
+#include "io/png.h"
 
 namespace svgf::bench {
 namespace {
@@ -45,6 +49,34 @@ std::string machine(const StabilityOptions& o) {
   return s;
 }
 
+// A failure's image, beside the page: stability/<scenario>.png.
+std::string image_name(const ScenarioResult& r) { return "stability/" + r.name + ".png"; }
+
+// The images side by side (input, reference, each failed method's output), each box-downscaled
+// by a whole factor to at most kPanel pixels a side (the mean of linear values) and tone-mapped
+// as svgf denoise's previews (core/tonemap.h, exposure 1), 2 gray pixels apart. Small, as the
+// images are committed.
+constexpr int kPanel = 64, kGap = 2;
+void write_failure_image(const std::string& path, const ScenarioResult& r) {
+  std::vector<const Image*> panels = {&r.shown_input, &r.shown_reference};
+  for (const auto& f : r.shown_failures) panels.push_back(&f.second);
+  const int w = r.shown_reference.width(), h = r.shown_reference.height();
+  const int f = std::max(1, (std::max(w, h) + kPanel - 1) / kPanel);
+  const int pw = w / f, ph = h / f;
+  const int width = static_cast<int>(panels.size()) * (pw + kGap) - kGap;
+  std::vector<uint8_t> rgb(static_cast<size_t>(width) * ph * 3, 128);
+  for (size_t i = 0; i < panels.size(); ++i)
+    for (int y = 0; y < ph; ++y)
+      for (int x = 0; x < pw; ++x)
+        for (int c = 0; c < 3; ++c) {
+          double sum = 0;
+          for (int dy = 0; dy < f; ++dy)
+            for (int dx = 0; dx < f; ++dx) sum += panels[i]->at(x * f + dx, y * f + dy, c);
+          const size_t at = (static_cast<size_t>(y) * width + i * (pw + kGap) + x) * 3 + c;
+          rgb[at] = tonemap_channel(static_cast<float>(sum / (f * f)), 1.0f);
+        }
+  io::write_png_rgb8(path, rgb.data(), width, ph);
+}
 
 }  // namespace
 
@@ -101,6 +133,15 @@ std::string stability_page(const StabilityOptions& o, const std::vector<Scenario
         << (row.verdict == Outcome::Pass ? std::string("**pass**") : std::string(v)) << " |\n";
     }
     p << "\n" << r.reading << "\n\n";
+    if (!r.shown_failures.empty()) {
+      std::string names;
+      for (const auto& f : r.shown_failures) names += (names.empty() ? "`" : ", `") + f.first + "`";
+      p << "![" << r.title << ": input, reference and the failed methods at frame "
+        << r.shown_frame << "](" << image_name(r) << ")\n\n"
+        << "Frame " << r.shown_frame << ", left to right: the input, the reference, then " << names
+        << " (the suite's methods that failed here; tone-mapped as `svgf denoise`'s previews, at "
+        << "most " << kPanel << " pixels a side).\n\n";
+    }
   }
   return p.str();
 }
@@ -153,6 +194,12 @@ int stability_command(const StabilityOptions& o) {
   }
   std::printf("%d failed threshold(s): findings, explained on the page\n", failed);
   if (!o.out_md.empty()) {
+    const std::filesystem::path folder = std::filesystem::path(o.out_md).parent_path();
+    for (const ScenarioResult& r : results) {
+      if (r.shown_failures.empty()) continue;
+      std::filesystem::create_directories(folder / "stability");
+      write_failure_image((folder / image_name(r)).string(), r);
+    }
     io::write_file_atomically(o.out_md, stability_page(o, results));
     std::printf("wrote %s\n", o.out_md.c_str());
   }

@@ -76,8 +76,36 @@ TEST_CASE("stability: every scenario runs on a tiny configuration and reads as k
   // A method without history is back the frame after the firefly.
   CHECK(row(scenario(rs, "fireflies"), "gaussian").data["frames"].get<int>() == 1);
 
+  // Each failed row of the suite's own methods keeps that method's output at the frame the
+  // page shows, with the input and reference of that frame; a passed row keeps nothing.
+  for (const ScenarioResult& r : rs) {
+    INFO(r.name);
+    std::vector<std::string> failed;
+    for (const StabilityRow& w : r.rows)
+      if (w.verdict == Outcome::Fail) failed.push_back(w.method);
+    REQUIRE(r.shown_failures.size() == failed.size());
+    for (size_t i = 0; i < failed.size(); ++i) {
+      CHECK(r.shown_failures[i].first == failed[i]);
+      CHECK(r.shown_failures[i].second.width() == r.shown_reference.width());
+    }
+    if (!failed.empty()) {
+      CHECK(r.shown_frame >= 0);
+      CHECK(r.shown_input.width() > 0);
+    }
+  }
+  const ScenarioResult& fireflies = scenario(rs, "fireflies");
+  CHECK(fireflies.shown_frame == 6);  // the frame with the outlier
+  // The Gaussian spreads the outlier over its 6 px footprint (docs/stability.md): shown.
+  REQUIRE(row(fireflies, "gaussian").verdict == Outcome::Fail);
+  CHECK(std::any_of(fireflies.shown_failures.begin(), fireflies.shown_failures.end(),
+                    [](const auto& f) { return f.first == "gaussian"; }));
+
   const std::string page = stability_page(o, rs);
-  for (const ScenarioResult& r : rs) CHECK(page.find("(`" + r.name + "`)") != std::string::npos);
+  for (const ScenarioResult& r : rs) {
+    CHECK(page.find("(`" + r.name + "`)") != std::string::npos);
+    const bool linked = page.find("(stability/" + r.name + ".png)") != std::string::npos;
+    CHECK(linked == !r.shown_failures.empty());
+  }
   CHECK(page.find("| svgf | ") != std::string::npos);
   CHECK(page.find(o.command) != std::string::npos);
   const nlohmann::json j = stability_json(o, rs);
