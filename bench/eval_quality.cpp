@@ -31,6 +31,12 @@ const std::map<std::string, double>& reference_noise_db() {
 
 namespace {
 
+std::string fmt_db(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2f dB", v);
+  return buf;
+}
+
 // The complete sequences of the set, by folder name; incomplete ones (no manifest yet, or one
 // that does not read) are named and skipped.
 std::vector<FrameSet> load_set(const std::string& dir, json& scenes) {
@@ -90,7 +96,8 @@ int run_eval_quality(const EvalQualityOptions& o) {
     if (!ok)
       row["why"] = it == reference_noise_db().end()
                        ? "reference noise not measured"
-                       : "reference noise below " + std::to_string(int(kCleanReferenceDb)) + " dB";
+                       : "reference noise " + fmt_db(it->second) + ", below " +
+                             fmt_db(kCleanReferenceDb);
     (ok ? clean : noisy).push_back(row);
   }
   doc["clean_scenes"] = clean;

@@ -2,6 +2,6 @@
 # the results model (built with svgf-bench's library).
 if(TARGET svgf_bench_lib)
   svgf_add_tests(svgf_bench_tests SOURCES bench_stage_cost_test.cpp bench_methods_test.cpp bench_targets_test.cpp
-                 bench_workload_test.cpp bench_stability_test.cpp
+                 bench_workload_test.cpp bench_stability_test.cpp bench_pareto_test.cpp
                  LIBS svgf_bench_lib)
 endif()
