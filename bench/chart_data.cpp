@@ -16,8 +16,9 @@ namespace svgf::bench {
 const char* default_targets_path() { return SVGF_BENCH_TARGETS; }
 
 int write_chart_data(const std::string& results_dir, const std::string& out_dir,
-                     const std::string& targets_path) {
-  const Results r = load_results(results_dir);
+                     const std::string& targets_path, const std::string& quality_file) {
+  Results r = load_results(results_dir);
+  if (!quality_file.empty()) load_eval_quality(r, quality_file);
   const std::vector<TargetResult> targets = evaluate_targets(load_targets(targets_path), r);
   fs::create_directories(out_dir);
   const std::vector<Point> pts = chart_points(r);

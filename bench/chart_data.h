@@ -10,8 +10,9 @@ namespace svgf::bench {
 const char* default_targets_path();
 
 // Reads every suite JSON in results_dir and the targets file; writes <out_dir>/*.dat and
-// <out_dir>/summary.md.
+// <out_dir>/summary.md. quality_file (non-empty): `svgf-bench quality`'s file, whose quality
+// (the evaluation set) replaces the suites' (the fixtures').
 int write_chart_data(const std::string& results_dir, const std::string& out_dir,
-                     const std::string& targets_path);
+                     const std::string& targets_path, const std::string& quality_file = "");
 
 }  // namespace svgf::bench

@@ -49,6 +49,11 @@ std::string platform(const Point& p);
 // at its suite's chart size and on its chart scene, grouped by series.
 std::vector<Point> chart_points(const Results& r);
 
+// Sets pareto_psnr / pareto_flip: on the front of its platform (platform()) when no other
+// point of that platform is both at least as fast and at least as good, and strictly better in
+// one (ties in both stay on the front). Points without a time or the metric are never on it.
+void mark_pareto_fronts(std::vector<Point>& pts);
+
 // The CIS 565 kernel-size study (the wavelet sections): the wavelet filter at each kernel size
 // and its 9x9 comparisons, with their times per platform and quality.
 struct StudyRow {

@@ -29,11 +29,12 @@ void write_text_file(const fs::path& path, const std::string& text) {
 void write_points(const fs::path& out, const std::vector<Point>& pts) {
   for (const char* series : kSeries) {
     std::ostringstream s;
-    s << "# time_ms psnr_db flip ssim relmse label\n";
+    s << "# time_ms psnr_db flip ssim relmse label pareto_psnr pareto_flip (1: on its platform's "
+         "front)\n";
     for (const Point& p : pts)
       if (p.series == series && std::isfinite(p.q.psnr))
         s << p.time_ms << ' ' << p.q.psnr << ' ' << p.q.flip << ' ' << p.q.ssim << ' ' << p.q.relmse
-          << " \"" << p.label << "\"\n";
+          << " \"" << p.label << "\" " << p.pareto_psnr << ' ' << p.pareto_flip << "\n";
     write_text_file(out / (std::string("points_") + series + ".dat"), s.str());
   }
   for (const char* plat : {"cpu", "gpu"})

@@ -15,6 +15,7 @@
 #include "cli/command_line.h"
 #include "bench/baselines.h"
 #include "bench/chart_data.h"
+#include "bench/eval_quality.h"
 #include "bench/gpu_probe.h"
 #include "bench/host_probe.h"
 #include "bench/runner.h"
@@ -270,9 +271,23 @@ void add_suite(CLI::App& bench, const std::string& command, int& status) {
   });
 }
 
+void add_eval_quality(CLI::App& bench, const std::string& command, int& status) {
+  auto o = std::make_shared<svgf::bench::EvalQualityOptions>();
+  o->command = command;
+  o->out_file = "docs/bench/eval_quality.json";
+  CLI::App* q = bench.add_subcommand(
+      "quality", "every chart configuration's quality on the evaluation set (svgf-fixtures eval)");
+  q->add_option("--set", o->set_dir, "the set's folder (one sequence folder per scene)")
+      ->required()->type_name("DIR");
+  q->add_option("--out", o->out_file, "(default docs/bench/eval_quality.json)")->type_name("FILE");
+  q->add_option("--threads", o->threads, "CPU threads (default all)")->type_name("N")
+      ->check(CLI::Range(0, 4096));
+  q->callback([o, &status] { status = svgf::bench::run_eval_quality(*o); });
+}
+
 void add_chart_data(CLI::App& bench, int& status) {
   struct Args {
-    std::string results, out, targets = svgf::bench::default_targets_path();
+    std::string results, out, targets = svgf::bench::default_targets_path(), quality;
   };
   auto a = std::make_shared<Args>();
   CLI::App* chart = bench.add_subcommand(
@@ -282,9 +297,12 @@ void add_chart_data(CLI::App& bench, int& status) {
   chart->add_option("--targets", a->targets,
                     "the targets (default: the source tree's bench/targets.json)")
       ->type_name("FILE");
+  chart->add_option("--quality", a->quality,
+                    "quality from `svgf-bench quality` (the evaluation set) in place of the suites'")
+      ->type_name("FILE");
   chart->callback([a, &status] {
     status = svgf::bench::write_chart_data(a->results, a->out.empty() ? a->results + "/data" : a->out,
-                                           a->targets);
+                                           a->targets, a->quality);
   });
 }
 
@@ -347,6 +365,7 @@ int main(int argc, char** argv) {
   add_run(bench, command, status);
   add_suite(bench, command, status);
   add_chart_data(bench, status);
+  add_eval_quality(bench, command, status);
   add_stability(bench, command, status);
   // Without a subcommand (`svgf-bench --size 64x64 ...`) the options are run's.
   std::vector<char*> args(argv, argv + argc);

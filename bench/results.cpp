@@ -79,6 +79,11 @@ std::vector<const json*> Results::timings(const std::string& suite_name,
 
 std::map<std::string, json> Results::quality(const std::string& key) const {
   std::map<std::string, json> by_scene;
+  if (!eval_quality.is_null()) {
+    for (const json& e : eval_quality["quality"])
+      if (e["key"] == key && !e.contains("error")) by_scene[e["scene"].get<std::string>()] = e;
+    return by_scene;
+  }
   for (const char* s : {"gpu", "cpu"})
     if (const json* doc = suite(s))
       for (const json& e : list(*doc, "quality"))
@@ -107,6 +112,17 @@ Results load_results(const std::string& dir) {
   }
   if (r.suites.empty()) throw std::runtime_error("no suite results (cpu.json, gpu.json) in " + dir);
   return r;
+}
+
+void load_eval_quality(Results& r, const std::string& file) {
+  std::ifstream in(file);
+  if (!in) throw std::runtime_error("cannot read " + file);
+  json doc = json::parse(in, nullptr, false);
+  if (doc.is_discarded()) throw std::runtime_error(file + ": not valid JSON");
+  if (doc.value("kind", "") != "eval-quality" || !doc.contains("set"))
+    throw std::runtime_error(file + ": not a quality file of `svgf-bench quality`");
+  check_entries(doc, "quality", kQualityFields, fs::path(file));
+  r.eval_quality = std::move(doc);
 }
 
 std::string size_of(const json& e) {

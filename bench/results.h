@@ -25,12 +25,15 @@ inline const char* const kBmfrFast = "bmfr cuda fast noise";
 
 struct Results {
   std::map<std::string, json> suites;  // by suite name ("cpu", "gpu")
+  // `svgf-bench quality`'s file (the evaluation set), when given: its quality replaces the
+  // suites' (the fixtures'); null otherwise.
+  json eval_quality;
 
   const json* suite(const std::string& name) const;
   // A section's timing entries, without those that failed, in file order.
   std::vector<const json*> timings(const std::string& suite, const std::string& section) const;
-  // Per-scene quality entries of configuration `key`, each scene from the first suite (gpu,
-  // then cpu) that has it.
+  // Per-scene quality entries of configuration `key`: from eval_quality when loaded, else each
+  // scene from the first suite (gpu, then cpu) that has it.
   std::map<std::string, json> quality(const std::string& key) const;
 };
 
@@ -38,6 +41,8 @@ struct Results {
 // skipped). Entries of OpenCV baselines from before their "cv-" names are read with them. A file that does not parse, or an entry without a field the writers read, is an
 // error naming the file.
 Results load_results(const std::string& dir);
+// Loads `svgf-bench quality`'s file into r.eval_quality (errors name the file).
+void load_eval_quality(Results& r, const std::string& file);
 
 // One timing entry.
 std::string size_of(const json& e);  // "1920x1080"

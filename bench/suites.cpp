@@ -22,12 +22,6 @@ namespace {
 
 using json = nlohmann::json;
 
-std::string now_iso() {
-  const std::time_t t = std::time(nullptr);
-  char buf[64];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
-  return buf;
-}
 
 // A scene whose every pixel has a surface, to check the default scene's timings (whose frames are
 // 44% background at 16:9) against full coverage.
@@ -183,13 +177,6 @@ json device_json(const DeviceInfo& d) {
           {"fp32_ops_per_s", d.fp32_ops_per_s}};
 }
 
-json host_json(const HostInfo& h) {
-  return {{"cpu_model", h.cpu_model},
-          {"hardware_threads", h.hardware_threads},
-          {"hostname", h.hostname},
-          {"cpu_kernels", h.cpu_kernels},
-          {"load", h.load}};
-}
 
 std::vector<std::string> sizes_of(const SuiteOptions& o) {
   return o.sizes.empty() ? std::vector<std::string>{"256", "720p", "1080p", "4k"} : o.sizes;
@@ -383,20 +370,7 @@ int run_cpu_suite(const SuiteOptions& o, SuiteWriter& w) {
   }
   if (wanted(o, "quality")) {
     const std::vector<FrameSet> fixtures = load_fixtures(o);
-    std::vector<RunConfig> configs;
-    RunConfig noisy;
-    noisy.method = "noisy";
-    configs.push_back(noisy);
-    for (auto [it, tap] : chart_params())
-      configs.push_back(svgf_config(Backend::Cpu, Mode::Exact, it, tap, all));
-    for (const RunConfig& c : svgf_preset_configs(Backend::Cpu, Mode::Exact, all))
-      configs.push_back(c);
-    for (const RunConfig& c : study_configs(Backend::Cpu, Mode::Exact, all)) configs.push_back(c);
-    for (const RunConfig& c : jbf_configs(Backend::Cpu, Mode::Exact, all)) configs.push_back(c);
-    for (const RunConfig& c : bmfr_configs(Backend::Cpu, all)) configs.push_back(c);
-    if (baselines_available())
-      for (const Baseline& b : default_baselines()) configs.push_back(baseline_config(b, all));
-    quality_all(w, configs, fixtures);
+    quality_all(w, quality_configs(all), fixtures);
     w.finish_section("quality");
   }
   return 0;
@@ -537,6 +511,38 @@ int run_gpu_suite(const SuiteOptions& o, SuiteWriter& w) {
 }
 
 }  // namespace
+
+std::vector<RunConfig> quality_configs(int threads) {
+  std::vector<RunConfig> configs;
+  RunConfig noisy;
+  noisy.method = "noisy";
+  configs.push_back(noisy);
+  for (auto [it, tap] : chart_params())
+    configs.push_back(svgf_config(Backend::Cpu, Mode::Exact, it, tap, threads));
+  for (const RunConfig& c : svgf_preset_configs(Backend::Cpu, Mode::Exact, threads))
+    configs.push_back(c);
+  for (const RunConfig& c : study_configs(Backend::Cpu, Mode::Exact, threads)) configs.push_back(c);
+  for (const RunConfig& c : jbf_configs(Backend::Cpu, Mode::Exact, threads)) configs.push_back(c);
+  for (const RunConfig& c : bmfr_configs(Backend::Cpu, threads)) configs.push_back(c);
+  if (baselines_available())
+    for (const Baseline& b : default_baselines()) configs.push_back(baseline_config(b, threads));
+  return configs;
+}
+
+std::string now_iso() {
+  const std::time_t t = std::time(nullptr);
+  char buf[64];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
+  return buf;
+}
+
+json host_json(const HostInfo& h) {
+  return {{"cpu_model", h.cpu_model},
+          {"hardware_threads", h.hardware_threads},
+          {"hostname", h.hostname},
+          {"cpu_kernels", h.cpu_kernels},
+          {"load", h.load}};
+}
 
 std::vector<std::string> suite_sections(const std::string& name) {
   if (name == "cpu")

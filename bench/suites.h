@@ -4,6 +4,9 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
+#include "bench/host_probe.h"
 #include "bench/runner.h"
 
 namespace svgf::bench {
@@ -34,5 +37,12 @@ struct SuiteOptions {
 // default on 2 threads beside it; GPU: the iterations size).
 std::vector<std::string> suite_sections(const std::string& name);
 int run_suite(const SuiteOptions& options);
+
+// Every configuration whose quality the charts show (CPU exact: CUDA exact gives the same bits),
+// the noisy input first: the cpu suite's quality section and `svgf-bench quality` run these.
+std::vector<RunConfig> quality_configs(int threads);
+
+std::string now_iso();  // UTC, ISO 8601
+nlohmann::json host_json(const HostInfo& h);
 
 }  // namespace svgf::bench

@@ -246,6 +246,66 @@ void bmfr_table(std::ostringstream& md, const Results& r) {
 
 }  // namespace
 
+namespace {
+
+// Each platform's front, fastest first, with a sentence the docs can take over.
+void pareto_fronts(std::ostringstream& md, const std::vector<Point>& pts) {
+  md << "\n## Pareto fronts\n\nA configuration is on its platform's front when no other of "
+        "that platform is both at least as fast and at least as good (and strictly one of them).\n";
+  for (const char* plat : {"gpu", "cpu"})
+    for (int which = 0; which < 2; ++which) {
+      std::vector<const Point*> front;
+      for (const Point& p : pts)
+        if (platform(p) == plat && (which == 0 ? p.pareto_psnr : p.pareto_flip)) front.push_back(&p);
+      std::sort(front.begin(), front.end(),
+                [](const Point* a, const Point* b) { return a->time_ms < b->time_ms; });
+      md << "\n**" << (std::string(plat) == "gpu" ? "GPU" : "CPU") << ", "
+         << (which == 0 ? "PSNR" : "FLIP") << "** (" << front.size() << "): ";
+      for (size_t i = 0; i < front.size(); ++i)
+        md << (i ? ", " : "") << "`" << front[i]->key << "` (" << fmt(front[i]->time_ms, 3)
+           << " ms, " << (which == 0 ? fmt(front[i]->q.psnr, 2) + " dB" : fmt(front[i]->q.flip, 4))
+           << ")";
+      md << ".\n";
+      if (front.size() >= 2)
+        md << "Template: \"On the " << (std::string(plat) == "gpu" ? "GPU" : "CPU") << ", going from `" << front.front()->key << "` to `"
+           << front.back()->key << "` buys "
+           << (which == 0 ? fmt(front.back()->q.psnr - front.front()->q.psnr, 2) + " dB PSNR"
+                          : fmt(front.front()->q.flip - front.back()->q.flip, 4) + " FLIP")
+           << " for " << fmt(front.back()->time_ms / front.front()->time_ms, 1)
+           << "x the time; every configuration off the front is beaten in both by one on it.\"\n";
+    }
+}
+
+// The evaluation set's means over all scenes and over the clean-reference scenes, and which
+// scenes were left out and why (eval_quality.h).
+void eval_set_means(std::ostringstream& md, const Results& r) {
+  const json& q = r.eval_quality;
+  const json& scenes = q["set"]["scenes"];
+  md << "\n## Evaluation set means\n\nSet: " << q["set"]["dir"].get<std::string>() << ", "
+     << scenes.size() << " scenes";
+  if (!scenes.empty())
+    md << ", " << scenes[0]["width"] << "x" << scenes[0]["height"] << ", " << scenes[0]["frames"]
+       << " frames, " << scenes[0]["reference_spp"] << "-spp references";
+  md << "; " << q.value("backend", "") << ", SVGF split " << q.value("svgf_split", "")
+     << "; measured " << q.value("started", "") << " on " << q["host"].value("cpu_model", "")
+     << " (`" << q.value("command", "") << "`).\n\nLeft out of the clean means (reference "
+     << "noise PSNR below " << q.value("clean_reference_db", 0.0)
+     << " dB, docs/gbuffer.md \"Reference noise\"): ";
+  const json& left = q["left_out_scenes"];
+  if (left.empty()) md << "none";
+  for (size_t i = 0; i < left.size(); ++i)
+    md << (i ? ", " : "") << "`" << left[i]["scene"].get<std::string>() << "` ("
+       << left[i].value("why", "") << ")";
+  md << ".\n\n| configuration | PSNR dB, all | PSNR dB, clean | FLIP, all | FLIP, clean |\n"
+        "|---|---:|---:|---:|---:|\n";
+  for (const json& m : q["means"])
+    md << "| " << m["key"].get<std::string>() << " | " << fmt(num(m["all"]["psnr"]), 2) << " | "
+       << fmt(num(m["clean"]["psnr"]), 2) << " | " << fmt(num(m["all"]["flip"]), 4) << " | "
+       << fmt(num(m["clean"]["flip"]), 4) << " |\n";
+}
+
+}  // namespace
+
 std::string summary_markdown(const Results& r, const std::vector<Point>& pts,
                              const std::vector<TargetResult>& targets) {
   std::ostringstream md;
@@ -457,9 +517,11 @@ std::string summary_markdown(const Results& r, const std::vector<Point>& pts,
   }
 
   // Quality against speed.
+  const bool on_eval = !r.eval_quality.is_null();
   md << "\n## Quality against time (the chart's numbers)\n\nTime: median filter time per frame "
-        "at the chart size; quality: mean over the fixture scenes of each scene's mean over its "
-        "frames. Output change is on the static scene ("
+        "at the chart size; quality: mean over "
+     << (on_eval ? "the evaluation set's clean-reference scenes (below)" : "the fixture scenes")
+     << " of each scene's mean over its frames. Output change is on the static scene ("
      << kStaticScene
      << ").\n\n"
         "| configuration | size | time ms | p95 ms | PSNR dB | FLIP | SSIM | relMSE | error change "
@@ -478,6 +540,8 @@ std::string summary_markdown(const Results& r, const std::vector<Point>& pts,
      << fmt(noisy.ssim, 4) << " | " << fmt(noisy.relmse, 4) << " | " << fmt(noisy.error_change, 5)
      << " | " << fmt(noisy.static_output_change, 5) << " | |\n";
 
+  pareto_fronts(md, pts);
+  if (on_eval) eval_set_means(md, r);
   kernel_size_table(md, r);
   per_tap_table(md, r);
   bmfr_table(md, r);

@@ -1,8 +1,9 @@
 # Per-frame error curves of one fixture scene: PSNR, FLIP and the frame-to-frame error change.
-# Called by bench/chart.sh with data = chart-data folder, scene = scene name, out = PNG path.
+# Called by bench/chart.sh with data = chart-data folder, scene = scene name, out = PNG path,
+# quality_on = the scenes' source ("the fixture scenes", "the evaluation set (...)").
 set terminal pngcairo size 1280,1000 font "DejaVu Sans,10"
 set output out
-set multiplot layout 3,1 title "Per-frame error, fixture scene " . scene
+set multiplot layout 3,1 title "Per-frame error, " . scene . ", from " . quality_on
 set grid
 set key outside right top
 set xlabel "frame"

@@ -1,11 +1,11 @@
 # Quality against time per frame, Pareto front marked. Called by bench/chart.sh with
 #   data = folder of svgf-bench chart-data's tables, out = PNG path,
 #   metric = "psnr" (column 2, higher is better) or "flip" (column 3, lower is better),
-#   subtitle = where the times come from.
+#   subtitle = where the times come from, quality_on = where the quality was measured.
 set terminal pngcairo size 1280,820 font "DejaVu Sans,11"
 set output out
 col = (metric eq "psnr") ? 2 : 3
-set title (metric eq "psnr" ? "Mean PSNR" : "Mean FLIP") . " over the fixture scenes against time per frame\n{/*0.8 " . subtitle . "}"
+set title (metric eq "psnr" ? "Mean PSNR" : "Mean FLIP") . " over " . quality_on . " against time per frame\n{/*0.8 " . subtitle . "}"
 set xlabel "time per frame, ms (median of the filter stages; log scale)"
 set ylabel (metric eq "psnr" ? "PSNR, dB (higher is better)" : "FLIP (lower is better)")
 set logscale x
