@@ -31,10 +31,25 @@ int downscale_factor(const Image& image) {
   return factor;
 }
 
-// The first `channels` channels of `image`, averaged over factor x factor boxes (the last row
-// and column of boxes may be cut by the image's edge), factor = downscale_factor(image).
+// box_downscaled by downscale_factor(image).
 Image downscaled(const Image& image, int channels) {
-  const int factor = downscale_factor(image);
+  return box_downscaled(image, downscale_factor(image), channels);
+}
+
+Rgb magma(float v) {
+  const float t = std::min(1.f, std::max(0.f, std::isnan(v) ? 0.f : v)) * 8.f;
+  const int i = std::min(7, static_cast<int>(t));
+  const float f = t - static_cast<float>(i);
+  auto mix = [&](uint8_t a, uint8_t b) {
+    return static_cast<uint8_t>(std::lround(a + (static_cast<float>(b) - a) * f));
+  };
+  return {mix(kMagma[i].r, kMagma[i + 1].r), mix(kMagma[i].g, kMagma[i + 1].g),
+          mix(kMagma[i].b, kMagma[i + 1].b)};
+}
+
+}  // namespace
+
+Image box_downscaled(const Image& image, int factor, int channels) {
   if (factor <= 1) return image.channels_from(0, channels);
   const int w = (image.width() + factor - 1) / factor, h = (image.height() + factor - 1) / factor;
   Image out(w, h, channels);
@@ -50,19 +65,6 @@ Image downscaled(const Image& image, int channels) {
       }
   return out;
 }
-
-Rgb magma(float v) {
-  const float t = std::min(1.f, std::max(0.f, std::isnan(v) ? 0.f : v)) * 8.f;
-  const int i = std::min(7, static_cast<int>(t));
-  const float f = t - static_cast<float>(i);
-  auto mix = [&](uint8_t a, uint8_t b) {
-    return static_cast<uint8_t>(std::lround(a + (static_cast<float>(b) - a) * f));
-  };
-  return {mix(kMagma[i].r, kMagma[i + 1].r), mix(kMagma[i].g, kMagma[i + 1].g),
-          mix(kMagma[i].b, kMagma[i + 1].b)};
-}
-
-}  // namespace
 
 HtmlImage preview_image(const std::string& name, const Image& linear_rgb, float exposure) {
   const Image small = downscaled(linear_rgb, 3);

@@ -11,6 +11,10 @@
 
 namespace svgf::app {
 
+// The first `channels` channels of `image`, averaged over factor x factor boxes (the mean of
+// linear values; the last row and column of boxes may be cut by the image's edge).
+Image box_downscaled(const Image& image, int factor, int channels);
+
 // Channels 0-2 of `linear_rgb`, tone-mapped at `exposure`.
 HtmlImage preview_image(const std::string& name, const Image& linear_rgb, float exposure);
 // Channel 0 of `error_map` (values in [0, 1], as metrics::flip_map gives) through the colour

@@ -10,6 +10,7 @@
 
 #include "bench/gpu_probe.h"
 #include "bench/host_probe.h"
+#include "app/report_images.h"
 #include "bench/stability.h"
 #include "core/tonemap.h"
 #include "io/atomic_file.h"
@@ -53,8 +54,8 @@ std::string machine(const StabilityOptions& o) {
 std::string image_name(const ScenarioResult& r) { return "stability/" + r.name + ".png"; }
 
 // The images side by side (input, reference, each failed method's output), each box-downscaled
-// by a whole factor to at most kPanel pixels a side (the mean of linear values) and tone-mapped
-// as svgf denoise's previews (core/tonemap.h, exposure 1), 2 gray pixels apart. Small, as the
+// by a whole factor to at most kPanel pixels a side (app/report_images.h) and tone-mapped as
+// svgf denoise's previews (core/tonemap.h, exposure 1), 2 gray pixels apart. Small, as the
 // images are committed.
 constexpr int kPanel = 64, kGap = 2;
 void write_failure_image(const std::string& path, const ScenarioResult& r) {
@@ -62,19 +63,17 @@ void write_failure_image(const std::string& path, const ScenarioResult& r) {
   for (const auto& f : r.shown_failures) panels.push_back(&f.second);
   const int w = r.shown_reference.width(), h = r.shown_reference.height();
   const int f = std::max(1, (std::max(w, h) + kPanel - 1) / kPanel);
-  const int pw = w / f, ph = h / f;
+  const int pw = (w + f - 1) / f, ph = (h + f - 1) / f;
   const int width = static_cast<int>(panels.size()) * (pw + kGap) - kGap;
   std::vector<uint8_t> rgb(static_cast<size_t>(width) * ph * 3, 128);
-  for (size_t i = 0; i < panels.size(); ++i)
+  for (size_t i = 0; i < panels.size(); ++i) {
+    const Image small = app::box_downscaled(*panels[i], f, 3);
     for (int y = 0; y < ph; ++y)
       for (int x = 0; x < pw; ++x)
-        for (int c = 0; c < 3; ++c) {
-          double sum = 0;
-          for (int dy = 0; dy < f; ++dy)
-            for (int dx = 0; dx < f; ++dx) sum += panels[i]->at(x * f + dx, y * f + dy, c);
-          const size_t at = (static_cast<size_t>(y) * width + i * (pw + kGap) + x) * 3 + c;
-          rgb[at] = tonemap_channel(static_cast<float>(sum / (f * f)), 1.0f);
-        }
+        for (int c = 0; c < 3; ++c)
+          rgb[(static_cast<size_t>(y) * width + i * (pw + kGap) + x) * 3 + c] =
+              tonemap_channel(small.at(x, y, c), 1.0f);
+  }
   io::write_png_rgb8(path, rgb.data(), width, ph);
 }
 
