@@ -77,10 +77,9 @@ Outcome verdict(bool pass) { return pass ? Outcome::Pass : Outcome::Fail; }
 // Keeps the frame the page shows of a failed row (ScenarioResult::shown_*). The OpenCV
 // baselines' outputs are left out: reference points, not methods of the suite, and the images
 // are committed.
-void keep_if_failed(ScenarioResult& r, const StabilityRow& row, const StabilitySequence& seq,
-                    const std::vector<Image>& out) {
-  if (row.verdict != Outcome::Fail || r.shown_frame < 0 || row.method.rfind("cv-", 0) == 0)
-    return;
+void keep_if_failed(ScenarioResult& r, const StabilityMethod& m, const StabilityRow& row,
+                    const StabilitySequence& seq, const std::vector<Image>& out) {
+  if (row.verdict != Outcome::Fail || r.shown_frame < 0 || !m.config.project()) return;
   const size_t k = static_cast<size_t>(r.shown_frame);
   if (k >= out.size() || k >= seq.frames.size()) return;
   if (r.shown_failures.empty()) {
@@ -144,7 +143,7 @@ class Suite {
         row.verdict = Outcome::NotMeasured;
       }
       row.method = m.name;
-      keep_if_failed(r, row, seq, out);
+      keep_if_failed(r, m, row, seq, out);
       r.rows.push_back(std::move(row));
     }
   }
@@ -541,7 +540,7 @@ std::vector<ScenarioResult> static_fixture(Suite& suite, bool flicker_wanted, bo
       flicker_row.verdict = verdict(change <= flicker_bar);
       flicker_row.data = {{"output_change", change}, {"per_frame", array(per)},
                           {"reference_change", ref_change}};
-      keep_if_failed(flicker, flicker_row, seq, clean);
+      keep_if_failed(flicker, m, flicker_row, seq, clean);
       if (firefly_wanted) {
         const std::vector<Image> dirty = denoise_sequence(m.config, injected);
         int radius = -1;
@@ -567,7 +566,7 @@ std::vector<ScenarioResult> static_fixture(Suite& suite, bool flicker_wanted, bo
         firefly_row.data = {{"radius", radius},        {"pixels", most},
                             {"frames", lasts},          {"error_db", array(e_dirty)},
                             {"clean_error_db", array(e_clean)}};
-        keep_if_failed(firefly, firefly_row, injected, dirty);
+        keep_if_failed(firefly, m, firefly_row, injected, dirty);
       }
     } catch (const std::exception& e) {
       flicker_row.value = firefly_row.value = std::string("did not run: ") + e.what();
