@@ -6,7 +6,10 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "bench/host_probe.h"
@@ -103,22 +106,40 @@ int run_eval_quality(const EvalQualityOptions& o) {
   doc["clean_scenes"] = clean;
   doc["left_out_scenes"] = noisy;
   json entries = json::array(), means = json::array();
+  tbb::task_arena arena(threads);
   // The frames come without direct/indirect (load_fixture, split false), so SVGF's split "auto"
   // runs unsplit: `--svgf-split off`, with the keys the charts look up.
   for (const RunConfig& c : quality_configs(threads)) {
     double sum[2][2] = {{0, 0}, {0, 0}};  // [all, clean][psnr, flip]
     int n[2] = {0, 0};
     std::string key;
-    for (const FrameSet& f : sets) {
-      json e;
+    // The scenes run side by side (each denoiser has its own state and threads), their results
+    // kept by scene index and printed and summed in the set's order afterwards, so the file is
+    // the same as one scene after the other. The OpenCV baselines share one global thread
+    // setting, so they run one scene at a time.
+    std::vector<json> results(sets.size());
+    std::vector<std::string> errors(sets.size());
+    auto one = [&](size_t i) {
       try {
-        e = quality_run(c, f);
-        print_quality(e, stdout);
+        results[i] = quality_run(c, sets[i]);
       } catch (const std::exception& ex) {
+        errors[i] = ex.what();
+        if (errors[i].empty()) errors[i] = "failed";
+      }
+    };
+    if (c.project() || c.method == "noisy")
+      arena.execute([&] { tbb::parallel_for(size_t(0), sets.size(), one); });
+    else
+      for (size_t i = 0; i < sets.size(); ++i) one(i);
+    for (size_t i = 0; i < sets.size(); ++i) {
+      const FrameSet& f = sets[i];
+      if (!errors[i].empty()) {
         std::fprintf(stderr, "svgf-bench quality: %s on %s: %s\n", c.key().c_str(),
-                     f.scene.c_str(), ex.what());
+                     f.scene.c_str(), errors[i].c_str());
         continue;
       }
+      json e = std::move(results[i]);
+      print_quality(e, stdout);
       key = e["key"].get<std::string>();
       const double psnr = e["mean"]["psnr"].is_number() ? e["mean"]["psnr"].get<double>() : NAN;
       const double flip = e["mean"]["flip"].get<double>();
