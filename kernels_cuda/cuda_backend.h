@@ -53,7 +53,8 @@ class CudaBackend {
     width_ = w;
     height_ = h;
     try {
-      for (int s = 0; s < 2; ++s) allocate(inputs_[s], kInputPlanes, "frame inputs");
+      for (int s = 0; s < 2; ++s) allocate(guides_[s], kGuidePlanes, "frame guides");
+      allocate(shading_, kInputPlanes - kGuidePlanes, "frame inputs");
       allocate(output_, 3, "output");
       staging_in_.resize(kInputPlanes * pixels(), "the pinned input staging buffer");
       staging_out_.resize(3 * pixels(), "the pinned output staging buffer");
@@ -64,7 +65,8 @@ class CudaBackend {
     return true;
   }
   void release() {
-    for (int s = 0; s < 2; ++s) inputs_[s].resize(0);
+    for (int s = 0; s < 2; ++s) guides_[s].resize(0);
+    shading_.resize(0);
     output_.resize(0);
     position_.resize(0);
     staging_position_.resize(0, "");
@@ -82,7 +84,7 @@ class CudaBackend {
   // Zero-filled, as the CPU's: a buffer a method fills only in part (BMFR's per-block data)
   // reads back defined.
   void allocate(Buffer& b, int channels, const char* what) {
-    const size_t planes = static_cast<size_t>(2 * kInputPlanes + 3 + method_planes_);
+    const size_t planes = static_cast<size_t>(kInputPlanes + kGuidePlanes + 3 + method_planes_);
     const size_t mib = (planes * pixels() * sizeof(float) + (1u << 20) - 1) >> 20;
     const std::string named = std::string(what) + " (" + std::to_string(width_) + "x" +
                               std::to_string(height_) + " frames need about " +
@@ -154,19 +156,23 @@ class CudaBackend {
     }
     host_copies_.run();
     engine_.mark(kUploadStage);
-    inputs_[slot_].upload_async(staging, planes * n, engine_.stream());
+    // The guides go to this frame's slot, the rest to the one shading buffer (two transfers
+    // from one staging buffer).
+    guides_[slot_].upload_async(staging, kGuidePlanes * n, engine_.stream());
+    shading_.upload_async(staging + kGuidePlanes * n, (planes - kGuidePlanes) * n,
+                          engine_.stream());
     if (position) position_.upload_async(staging_position_.get(), 3 * n, engine_.stream());
     if (split) split_.upload_async(staging_split_.get(), 6 * n, engine_.stream());
     FrameInputs f;
     f.guides = guides(slot_);
-    f.color = rgb(inputs_[slot_], kColor);
-    f.albedo = rgb(inputs_[slot_], kAlbedo);
-    if (emission) f.emission = rgb(inputs_[slot_], kEmission);
+    f.color = input_rgb(kColor);
+    f.albedo = input_rgb(kAlbedo);
+    if (emission) f.emission = input_rgb(kEmission);
     if (position) f.position = rgb(position_, 0);
     if (gradient) {
-      f.gradient.previous = plane(inputs_[slot_], kGradient);
-      f.gradient.current = plane(inputs_[slot_], kGradient + 1);
-      f.gradient.mask = plane(inputs_[slot_], kGradient + 2);
+      f.gradient.previous = input_plane(kGradient);
+      f.gradient.current = input_plane(kGradient + 1);
+      f.gradient.mask = input_plane(kGradient + 2);
     }
     if (split) {
       f.direct = rgb(split_, 0);
@@ -195,20 +201,20 @@ class CudaBackend {
   // only read.
   void sanitize(const FrameInputs& f, bool emission, bool position, bool split) {
     InputPlanesOut out;
-    out.color = rgb(inputs_[slot_], kColor);
-    out.albedo = rgb(inputs_[slot_], kAlbedo);
-    if (emission) out.emission = rgb(inputs_[slot_], kEmission);
-    out.normal = rgb(inputs_[slot_], kNormal);
+    out.color = input_rgb(kColor);
+    out.albedo = input_rgb(kAlbedo);
+    if (emission) out.emission = input_rgb(kEmission);
+    out.normal = input_rgb(kNormal);
     if (position) out.position = rgb(position_, 0);
     if (split) {
       out.direct = rgb(split_, 0);
       out.indirect = rgb(split_, 3);
     }
-    out.depth = plane(inputs_[slot_], kDepth);
-    out.depth_dx = plane(inputs_[slot_], kDepthDx);
-    out.depth_dy = plane(inputs_[slot_], kDepthDy);
-    out.motion_x = plane(inputs_[slot_], kMotionX);
-    out.motion_y = plane(inputs_[slot_], kMotionY);
+    out.depth = input_plane(kDepth);
+    out.depth_dx = input_plane(kDepthDx);
+    out.depth_dy = input_plane(kDepthDy);
+    out.motion_x = input_plane(kMotionX);
+    out.motion_y = input_plane(kMotionY);
     InputPlanes in;
     in.color = f.color;
     in.albedo = f.albedo;
@@ -225,19 +231,20 @@ class CudaBackend {
     engine_.run_tallying(kSanitizeStage, SanitizeInputs{width_, in, out}, width_, height_);
   }
 
-  // Planes of one frame's upload, in order; mesh_id travels as raw 32-bit words. The optional
-  // emission and gradient samples come last, so a frame without them uploads kRequiredPlanes
-  // only.
+  // Planes of one frame's upload, in order; mesh_id travels as raw 32-bit words. The guides
+  // come first (planes 0 to 8, the slot of guides_ that is this frame's); the optional emission
+  // and gradient samples come last, so a frame without them uploads kRequiredPlanes only.
   enum InputPlane : int {
-    kColor = 0,     // 3
-    kAlbedo = 3,    // 3
-    kNormal = 6,    // 3
-    kDepth = 9,
-    kDepthDx = 10,
-    kDepthDy = 11,
-    kMotionX = 12,
-    kMotionY = 13,
-    kMeshId = 14,
+    kDepth = 0,
+    kDepthDx = 1,
+    kDepthDy = 2,
+    kNormal = 3,    // 3
+    kMotionX = 6,
+    kMotionY = 7,
+    kMeshId = 8,
+    kGuidePlanes = 9,
+    kColor = 9,     // 3; from here on in shading_, at plane - kGuidePlanes
+    kAlbedo = 12,   // 3
     kRequiredPlanes = 15,
     kEmission = 15,  // 3, optional
     kGradient = 18,  // 3, optional: A-SVGF's previous, current luminance and mask
@@ -265,15 +272,20 @@ class CudaBackend {
     GuideView g;
     g.width = width_;
     g.height = height_;
-    g.depth = plane(inputs_[slot], kDepth);
-    g.depth_dx = plane(inputs_[slot], kDepthDx);
-    g.depth_dy = plane(inputs_[slot], kDepthDy);
-    g.normal = rgb(inputs_[slot], kNormal);
-    g.mesh_id = reinterpret_cast<const uint32_t*>(plane(inputs_[slot], kMeshId));
-    g.motion_x = plane(inputs_[slot], kMotionX);
-    g.motion_y = plane(inputs_[slot], kMotionY);
+    g.depth = plane(guides_[slot], kDepth);
+    g.depth_dx = plane(guides_[slot], kDepthDx);
+    g.depth_dy = plane(guides_[slot], kDepthDy);
+    g.normal = rgb(guides_[slot], kNormal);
+    g.mesh_id = reinterpret_cast<const uint32_t*>(plane(guides_[slot], kMeshId));
+    g.motion_x = plane(guides_[slot], kMotionX);
+    g.motion_y = plane(guides_[slot], kMotionY);
     return g;
   }
+  // An input plane of this frame, in whichever buffer holds it.
+  float* input_plane(int p) const {
+    return p < kGuidePlanes ? plane(guides_[slot_], p) : plane(shading_, p - kGuidePlanes);
+  }
+  RgbView input_rgb(int p) const { return {input_plane(p), input_plane(p + 1), input_plane(p + 2)}; }
 
   Mode mode_;
   int device_ = 0;
@@ -281,7 +293,10 @@ class CudaBackend {
   int width_ = 0, height_ = 0;
   int slot_ = 0;  // input slot the next frame is uploaded into
   int method_planes_ = 0;
-  Buffer inputs_[2], output_, position_, split_;
+  // The guides of this frame and the previous one (reprojection reads the previous frame's
+  // through previous_guides(), nothing else of it), and this frame's other inputs once:
+  // 2 x 9 + 12 planes instead of 2 x 21 (docs/benchmarks.md, "Where the 618 MiB go").
+  Buffer guides_[2], shading_, output_, position_, split_;
   PinnedBuffer<float> staging_in_, staging_out_, staging_position_, staging_split_;
   HostStaging host_copies_;
 };
