@@ -1,8 +1,8 @@
 #pragma once
 // svgf denoise's frame loop as a bounded pipeline: reading frame N+1, denoising frame N and
-// writing frame N-1 overlap (docs/cli.md, "Pipelined frames"). Three stages, each serial and in
-// frame order, so each behaves as in a plain loop: the denoiser, which keeps history, sees the
-// frames one at a time in order, and the outputs and the report are written in order.
+// writing frame N-1 overlap (docs/cli.md). Three stages, each serial and in frame order, so each
+// behaves as in a plain loop: the denoiser, which keeps history, sees the frames one at a time
+// in order, and the outputs and the report are written in order.
 //
 // Errors travel with their item: what the first or second stage throws is kept with the item and
 // handed to the last stage in order, which throws it. So only the last stage ever throws, after
@@ -36,7 +36,8 @@ struct StageFailure {
 // Runs items 0..count-1 through read(index, Item&), process(Item&) and
 // finish(Item&, const StageFailure&), at most `in_flight` items at once (>= 1; 1 is the plain
 // loop: each item finished before the next is read). process is skipped for an item whose read
-// failed; finish gets the failure and must throw (it is rethrown if finish returns). Each call
+// failed and for any item after a failed one; finish gets the failure and must throw (it is
+// rethrown if finish returns). Each call
 // runs with the IEEE float environment (kernels_cpu/ieee_guard.h: TBB's threads need not have
 // the caller's) and isolated, so that waiting inside one stage never runs another stage's work
 // on the same thread (a stage's time is its own).
