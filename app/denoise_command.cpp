@@ -7,10 +7,14 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "cli/command_line.h"
 #include "app/folder_checks.h"
 #include "app/frame_order.h"
+#include "app/frame_pipeline.h"
+#include "app/frame_timing.h"
+#include "app/input_warnings.h"
 #include "app/interrupt.h"
 #include "app/method_options.h"
 #include "app/report_images.h"
@@ -38,6 +42,8 @@ const char* const kDescription =
     "report.html (a self-contained page of plots and images; docs/report.md).\n"
     "Frames are read in the order of their frame numbers, and each output keeps its input's\n"
     "number; the history restarts at camera cuts and at gaps in the numbering.\n"
+    "Reading frame N+1, denoising N and writing N-1 overlap (--frames-in-flight); the\n"
+    "summary and report.json's \"timing\" say where a frame's wall time goes (docs/cli.md).\n"
     "OUT_DIR may not be IN_DIR, lie inside it or hold it (a usage error, exit 2).\n"
     "The run is written beside OUT_DIR and replaces it as a whole only when it succeeds\n"
     "(OUT_DIR must be absent, empty or an earlier output); a failed run leaves OUT_DIR as\n"
@@ -46,7 +52,7 @@ const char* const kDescription =
 
 struct DenoiseArgs {
   std::string in_dir, out_dir, method = "svgf", backend = "auto", mode = "exact";
-  int threads = 0, frames = 1 << 20;
+  int threads = 0, frames = 1 << 20, in_flight = 3;
   float exposure = 1.f;
   bool no_preview = false, no_verify = false;
   MethodParamFlags params;
@@ -122,11 +128,26 @@ std::vector<PlannedFrame> validate_sequence(const io::Sequence& sequence, int li
   return plan;
 }
 
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// One frame on its way through the frame pipeline.
+struct FrameWork {
+  const PlannedFrame* planned = nullptr;
+  Frame in;
+  Image out;
+  FrameReport denoised;                // the denoiser's report of this frame
+  std::vector<InputWarning> warnings;  // found by the denoise stage, reported by the last
+  FrameTimes times;
+};
+
 // What a run needs once its arguments are accepted.
 struct RunSettings {
   std::string in_dir, out_dir;
   SplitMode split = SplitMode::Off;  // SVGF's, Off for the other methods
   int frame_limit = 0;
+  int in_flight = 3;  // frames in the pipeline at most; 1: one after another
   bool verify = true, previews = true;
   float exposure = 1.f;
   Backend requested_backend = Backend::Auto;
@@ -163,40 +184,65 @@ void run(const RunSettings& s, Denoiser& denoiser, RunProgress& progress) {
                    sequence.manifest().height, denoiser.description());
   if (!s.previews) report.set_images_note("No images: the run had --no-preview.");
   cli::ProgressBar bar("denoise", frames);
-  Image out;
+  bar.show_rate("fps");
   progress.stage = "denoising";
-  Camera previous_camera;
+  Camera previous_camera;  // the denoise stage's alone
   bool has_previous = false;
-  for (const PlannedFrame& planned : plan) {
-    throw_if_interrupted();  // between frames: a frame is denoised and written whole or not at all
-    progress.frame = planned.number;
-    progress.file = sequence.path(planned.position);
-    const Frame in = sequence.read(planned.position);
-    if (!planned.reset.empty()) denoiser.reset();
-    report.add_warnings(planned.number,
-                        input_warnings(in, has_previous && planned.reset.empty() ? &previous_camera
-                                                                                 : nullptr));
-    previous_camera = in.camera;
-    has_previous = true;
-    const auto t0 = std::chrono::steady_clock::now();
-    denoiser.denoise(in, out);
-    const double ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-
-    const std::string name = io::frame_file_name(planned.number);  // never renumbered
-    io::write_rgb_exr((folder / name).string(), out);
-    if (s.previews)
-      write_preview((folder / "preview" / (name.substr(0, name.size() - 4) + ".png")).string(),
-                    in, out, s.exposure);
-    ++progress.frames_written;
-    const std::string detail = report.add(planned, fs::path(progress.file).filename().string(), ms,
-                                          denoiser.last_report(), in, out);
-    if (s.previews && html_frame_has_images(progress.frames_written - 1, frames))
-      report.add_images(denoise_images(in, out, s.exposure));
-    bar.update(progress.frames_written, detail);
-    progress.frame = -1;  // done: a stop before the next frame names none
-    progress.file.clear();
-  }
+  const auto loop_start = std::chrono::steady_clock::now();
+  // Reading frame N+1, denoising N and writing N-1 overlap, each stage serial and in frame order
+  // (app/frame_pipeline.h). At most s.in_flight frames (3 by default: one per stage) are held,
+  // inputs with all their channels and outputs: the pipeline's memory bound.
+  run_frame_pipeline<FrameWork>(
+      frames, s.in_flight,
+      [&](int k, FrameWork& w) {  // read and decode the input
+        w.planned = &plan[static_cast<size_t>(k)];
+        throw_if_interrupted();  // a stop reads no more frames
+        const auto t0 = std::chrono::steady_clock::now();
+        w.in = sequence.read(w.planned->position);
+        w.times.read_ms = ms_since(t0);
+      },
+      [&](FrameWork& w) {  // denoise: the denoiser keeps history, so one frame at a time, in order
+        throw_if_interrupted();
+        const PlannedFrame& planned = *w.planned;
+        if (!planned.reset.empty()) denoiser.reset();
+        w.warnings = input_warnings(
+            w.in, has_previous && planned.reset.empty() ? &previous_camera : nullptr);
+        previous_camera = w.in.camera;
+        has_previous = true;
+        const auto t0 = std::chrono::steady_clock::now();
+        denoiser.denoise(w.in, w.out);
+        w.times.denoise_ms = ms_since(t0);
+        w.denoised = denoiser.last_report();  // the next frame's denoise replaces it
+      },
+      [&](FrameWork& w, const StageFailure& failure) {  // write the outputs, report, progress
+        // Between frames: a frame is written whole or not at all, and none after a stop.
+        throw_if_interrupted();
+        const PlannedFrame& planned = *w.planned;
+        progress.frame = planned.number;
+        progress.file = sequence.path(planned.position);
+        progress.frame_step = to_string(failure.error ? failure.step : FrameStep::Write);
+        if (failure.error) return;  // rethrown by the pipeline, naming this frame
+        const auto t0 = std::chrono::steady_clock::now();
+        report.add_warnings(planned.number, w.warnings);
+        const std::string name = io::frame_file_name(planned.number);  // never renumbered
+        io::write_rgb_exr((folder / name).string(), w.out);
+        if (s.previews)
+          write_preview((folder / "preview" / (name.substr(0, name.size() - 4) + ".png")).string(),
+                        w.in, w.out, s.exposure);
+        ++progress.frames_written;
+        const std::string detail =
+            report.add(planned, fs::path(progress.file).filename().string(), w.times.denoise_ms,
+                       w.denoised, w.in, w.out);
+        if (s.previews && html_frame_has_images(progress.frames_written - 1, frames))
+          report.add_images(denoise_images(w.in, w.out, s.exposure));
+        w.times.write_ms = ms_since(t0);
+        report.add_times(w.times);
+        bar.update(progress.frames_written, detail);
+        progress.frame = -1;  // done: a stop before the next frame names none
+        progress.file.clear();
+        progress.frame_step.clear();
+      });
+  report.set_loop_time(ms_since(loop_start), s.in_flight);
   progress.stage = "writing the report";
   throw_if_interrupted();
   report.write(staged.path());
@@ -230,6 +276,7 @@ int run_denoise(const DenoiseArgs& a) {
   settings.previews = !a.no_preview;
   settings.verify = !a.no_verify;
   settings.frame_limit = a.frames;
+  settings.in_flight = a.in_flight;
 
   // From here on a failure leaves OUT_DIR as it was and says what failed beside it.
   RunProgress progress;
@@ -275,6 +322,10 @@ CLI::App* add_denoise_command(CLI::App& svgf, int& status) {
       ->type_name("N")->check(CLI::Range(0, 1024));
   sub->add_option("--frames", a->frames, "denoise only the first N frames (by frame number)")
       ->type_name("N")->check(CLI::Range(1, 1 << 20));
+  sub->add_option("--frames-in-flight", a->in_flight,
+                  "frames read, denoised and written at once, each stage in frame order "
+                  "(default 3; 1: one frame after another, to time the stages alone)")
+      ->type_name("N")->check(CLI::Range(1, 3));
   sub->add_option("--exposure", a->exposure, "preview exposure, finite and > 0 (default 1)")
       ->type_name("E")->check(cli::PositiveFinite);
   sub->add_flag("--no-verify", a->no_verify,

@@ -107,6 +107,19 @@ HtmlReport denoise_page(const nlohmann::json& report, std::vector<std::vector<Ht
        std::to_string(report.value("input_warnings", nlohmann::json::array()).size()) +
            " (report.json lists them)"});
   page.tables = {run, timing, quality};
+  if (report.contains("timing")) {  // the frame loop's summary (app/frame_timing.h)
+    const nlohmann::json& t = report["timing"];
+    const auto ms = [&](const char* key) { return fixed(t.value(key, 0.0), " ms", 2); };
+    HtmlTable wall{"Where a frame's wall time goes (stages overlap: docs/cli.md)", {}};
+    wall.rows = {{"read (median)", ms("median_read_ms")},
+                 {"denoise (median)", ms("median_denoise_ms")},
+                 {"write (median)", ms("median_write_ms")},
+                 {"stages' sum (mean)", ms("stage_sum_ms_per_frame")},
+                 {"wall time per frame", ms("wall_ms_per_frame")},
+                 {"frames in flight (at most)", std::to_string(t.value("frames_in_flight", 0))},
+                 {"speed-up over the sum", fixed(t.value("speedup_over_stage_sum", 0.0), "x", 2)}};
+    page.tables.push_back(std::move(wall));
+  }
   page.wipe_left = "denoised";
   page.wipe_right = "reference";
   return page;

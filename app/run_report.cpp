@@ -87,6 +87,18 @@ std::string RunReport::add(const PlannedFrame& planned, const std::string& input
   return detail;
 }
 
+void RunReport::add_times(const FrameTimes& times) {
+  times_.push_back(times);
+  nlohmann::json& fr = json_["frames"].back();
+  fr["read_ms"] = times.read_ms;
+  fr["write_ms"] = times.write_ms;
+}
+
+void RunReport::set_loop_time(double ms, int in_flight) {
+  loop_ms_ = ms;
+  in_flight_ = in_flight;
+}
+
 void RunReport::add_warnings(int frame, const std::vector<InputWarning>& warnings) {
   for (const InputWarning& w : warnings) {
     json_["input_warnings"].push_back({{"frame", frame}, {"kind", w.kind}, {"text", w.text}});
@@ -111,6 +123,7 @@ void RunReport::write(const std::string& folder) {
     json_["mean_psnr_noisy_db"] = noisy_psnr_sum_ / with_reference_;
     json_["mean_psnr_denoised_db"] = psnr_sum_ / with_reference_;
   }
+  if (!times_.empty()) json_["timing"] = to_json(summarize_timing(times_, loop_ms_, in_flight_));
   io::write_file_atomically((fs::path(folder) / kReportCsv).string(), csv_);
   const std::string note = images_note_.empty() ? html_images_note(frames_) : images_note_;
   io::write_file_atomically((fs::path(folder) / kReportHtml).string(),
@@ -123,6 +136,16 @@ void RunReport::print_summary(const std::string& in_dir, const std::string& out_
   std::printf("denoised %d frames of %s into %s\n", frames_, in_dir.c_str(), out_dir.c_str());
   std::printf("  denoiser          %s\n", denoiser.c_str());
   std::printf("  time per frame    %s ms (mean, I/O excluded)\n", fixed(total_ms_ / frames_, 2).c_str());
+  if (!times_.empty()) {
+    const TimingSummary t = summarize_timing(times_, loop_ms_, in_flight_);
+    std::printf("  stages per frame  read %s + denoise %s + write %s ms (medians)\n",
+                fixed(t.median_read_ms, 2).c_str(), fixed(t.median_denoise_ms, 2).c_str(),
+                fixed(t.median_write_ms, 2).c_str());
+    std::printf("  wall per frame    %s ms with %d frame%s in flight; the stages' sum %s ms "
+                "(mean): %sx\n",
+                fixed(t.wall_ms_per_frame, 2).c_str(), t.in_flight, t.in_flight == 1 ? "" : "s",
+                fixed(t.stage_sum_ms_per_frame, 2).c_str(), fixed(t.speedup, 2).c_str());
+  }
   std::printf("  replaced samples  %lld (color NaN, Inf, negative or > 1e8, set to 0)\n",
               static_cast<long long>(replaced_total_));
   for (const auto& [kind, c] : warnings_)
@@ -163,6 +186,7 @@ bool write_failure_report(const std::string& in_dir, const std::string& out_dir,
   if (progress.frame >= 0) {
     j["frame"] = progress.frame;
     j["file"] = io::printable(progress.file);
+    if (!progress.frame_step.empty()) j["frame_step"] = progress.frame_step;
   }
   j["frames_written"] = progress.frames_written;
   j["error"] = io::printable(error);

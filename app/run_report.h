@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/frame_order.h"
+#include "app/frame_timing.h"
 #include "app/html_report.h"
 #include "app/input_warnings.h"
 #include "core/denoiser.h"
@@ -26,6 +27,11 @@ class RunReport {
   // Adds one denoised frame; returns the progress bar's detail ("3.2 ms, PSNR 31.20 dB").
   std::string add(const PlannedFrame& planned, const std::string& input_file, double ms,
                   const FrameReport& r, const Frame& in, const Image& out);
+  // The read, denoise and write times of the frame last added (its read_ms and write_ms in
+  // report.json), for the timing summary.
+  void add_times(const FrameTimes& times);
+  // The frame loop's wall time and how many frames it held at most: the summary's "timing".
+  void set_loop_time(double ms, int in_flight);
   // Input traps found in frame `frame` (app/input_warnings.h): listed in report.json, counted
   // by kind for the summary.
   void add_warnings(int frame, const std::vector<InputWarning>& warnings);
@@ -55,14 +61,18 @@ class RunReport {
   };
   std::map<std::string, WarningCount> warnings_;  // by kind
   std::vector<std::vector<HtmlImage>> images_;     // per frame, for report.html
+  std::vector<FrameTimes> times_;                   // per frame
+  double loop_ms_ = 0;
+  int in_flight_ = 0;
   std::string images_note_;
 };
 
 // Where a run stands, for the failure report.
 struct RunProgress {
   std::string stage = "reading the input";
-  int frame = -1;          // frame number being denoised; -1 outside the frame loop
+  int frame = -1;          // frame number that failed; -1 outside the frame loop, or a signal
   std::string file;        // its input file
+  std::string frame_step;  // what failed on it: "read", "denoise" or "write" (app/frame_pipeline.h)
   int frames_written = 0;  // outputs written into the staging folder (discarded on failure)
 };
 

@@ -38,7 +38,7 @@ std::string format_duration(double s) {
 }
 
 std::string format_progress(const std::string& label, double done, int total, double elapsed_s,
-                            const std::string& detail) {
+                            const std::string& detail, const std::string& rate_unit) {
   const double fraction = total > 0 ? std::clamp(done / total, 0.0, 1.0) : 0.0;
   const int filled = std::min(kBarWidth, static_cast<int>(fraction * kBarWidth + 1e-9));
   std::string line = label + " [" + std::string(filled, '#') +
@@ -51,6 +51,11 @@ std::string format_progress(const std::string& label, double done, int total, do
   // Time left at the rate so far; none before any progress, nor once done.
   if (fraction > 0.0 && fraction < 1.0)
     line += ", ~" + format_duration(elapsed_s / fraction - elapsed_s) + " left";
+  if (!rate_unit.empty() && done > 0.0 && elapsed_s > 0.0) {
+    const double rate = done / elapsed_s;
+    std::snprintf(buf, sizeof buf, ", %.*f %s", rate < 10.0 ? 2 : 1, rate, rate_unit.c_str());
+    line += buf;
+  }
   if (!detail.empty()) line += "  " + detail;
   return line;
 }
@@ -95,7 +100,7 @@ int ProgressBar::columns() const {
 }
 
 void ProgressBar::draw(double done, const std::string& detail, bool finished) {
-  std::string line = format_progress(label_, done, total_, seconds(), detail);
+  std::string line = format_progress(label_, done, total_, seconds(), detail, rate_unit_);
   if (!tty_) {
     std::fprintf(terminal_.out, "%s\n", line.c_str());
     std::fflush(terminal_.out);

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <functional>
 #include <string>
+#include <utility>
 
 namespace svgf::cli {
 
@@ -15,8 +16,10 @@ std::string format_duration(double seconds);
 // One line, without the terminal's '\r':
 // "denoise [###############...............]  50.0%  5/10  2.0 s, ~2.0 s left  3.1 ms, PSNR 31 dB".
 // `done` may be fractional (a frame partly rendered); the count shows the whole units.
+// `rate_unit` (e.g. "fps"): when set, the units per second over the whole run so far follow the
+// times ("2.0 s, ~2.0 s left, 2.50 fps"), once something is done.
 std::string format_progress(const std::string& label, double done, int total, double elapsed_s,
-                            const std::string& detail);
+                            const std::string& detail, const std::string& rate_unit = "");
 
 class ProgressBar {
  public:
@@ -40,12 +43,15 @@ class ProgressBar {
   // updates are ignored.
   void update(double done, const std::string& detail = "");
   double seconds() const;  // since the bar was made
+  // Shows the throughput since the bar was made, in `unit` ("fps"): format_progress.
+  void show_rate(std::string unit) { rate_unit_ = std::move(unit); }
 
  private:
   void draw(double done, const std::string& detail, bool finished);
   int columns() const;
 
   std::string label_;
+  std::string rate_unit_;  // empty: no rate shown
   int total_;
   Terminal terminal_;
   bool tty_;

@@ -1,5 +1,5 @@
 svgf_add_tests(svgf_app_tests SOURCES app_test.cpp app_process_test.cpp app_info_compare_test.cpp
-  app_import_test.cpp app_html_report_test.cpp app_browser_test.cpp LIBS svgf_app svgf_io)
+  app_import_test.cpp app_html_report_test.cpp app_browser_test.cpp app_pipeline_test.cpp LIBS svgf_app svgf_io)
 # app_process_test.cpp runs the svgf binary itself (exit status, file size limits, signals).
 add_dependencies(svgf_app_tests svgf)
 svgf_sanitized_at_o0(svgf_app_tests)

@@ -73,6 +73,28 @@ TEST_CASE("format_progress: bar, percentage, count, elapsed, time left, detail",
         "x [##############################] 100.0%  4/4  1m15s");
 }
 
+// Issue 14, item 4: svgf denoise shows its frames per second over the whole run so far.
+TEST_CASE("format_progress: the rate over the whole run, when asked for", "[cli][progress]") {
+  CHECK(format_progress("denoise", 5, 10, 2.0, "3.1 ms", "fps") ==
+        "denoise [###############...............]  50.0%  5/10  2.0 s, ~2.0 s left, 2.50 fps"
+        "  3.1 ms");
+  CHECK(format_progress("denoise", 40, 40, 2.0, "", "fps") ==
+        "denoise [##############################] 100.0%  40/40  2.0 s, 20.0 fps");
+  // Nothing done, or no time yet: no rate.
+  CHECK(format_progress("x", 0, 4, 1.0, "", "fps") ==
+        "x [..............................]   0.0%  0/4  1.0 s");
+  CHECK(format_progress("x", 1, 4, 0.0, "", "fps").find("fps") == std::string::npos);
+  FakeTerminal term;
+  {
+    ProgressBar bar("denoise", 4, term.terminal(false));
+    bar.show_rate("fps");
+    term.now += 0.5;
+    bar.update(1);
+  }
+  CHECK(term.text() ==
+        "denoise [#######.......................]  25.0%  1/4  0.5 s, ~1.5 s left, 2.00 fps\n");
+}
+
 TEST_CASE("progress in a log: a line at every tenth and after 10 s of silence", "[cli][progress]") {
   FakeTerminal term;
   {
