@@ -22,30 +22,33 @@ scene_args=()
 for s in "$@"; do scene_args+=(--scene "$s"); done
 start=$(date +%s)
 left() { echo $(( budget - ($(date +%s) - start) )); }
-running() { pgrep -x "$1" >/dev/null; }  # by process name: never matches this script
+# Each detached job's pid is kept in a file: a pid file names this script's own jobs only.
+running() { [ -f "/tmp/svgf-eval-$1.pid" ] && kill -0 "$(cat "/tmp/svgf-eval-$1.pid")" 2>/dev/null; }
 
 "$run" svgf-fixtures --help >/dev/null 2>&1  # unpacks the bundle's libraries once
-if [ ! -f "$set_dir/.rendered" ] && ! running svgf-fixtures; then
+if [ ! -f "$set_dir/.rendered" ] && ! running render; then
   setsid nohup bash -c "'$run' svgf-fixtures eval --out '$set_dir' ${scene_args[*]} && touch '$set_dir/.rendered'" \
     >>/tmp/svgf-eval-render.log 2>&1 </dev/null &
+  echo $! >/tmp/svgf-eval-render.pid
   sleep 2
 fi
-while [ ! -f "$set_dir/.rendered" ] && running svgf-fixtures && [ "$(left)" -gt 15 ]; do sleep 3; done
-if [ -f "$set_dir/.rendered" ] && [ ! -f /tmp/svgf-eval-quality.json ] && ! running svgf-bench; then
+while [ ! -f "$set_dir/.rendered" ] && running render && [ "$(left)" -gt 15 ]; do sleep 3; done
+if [ -f "$set_dir/.rendered" ] && [ ! -f /tmp/svgf-eval-quality.json ] && ! running quality; then
   setsid nohup "$run" svgf-bench quality --set "$set_dir" --out /tmp/svgf-eval-quality.json \
     >>/tmp/svgf-eval-quality.log 2>&1 </dev/null &
+  echo $! >/tmp/svgf-eval-quality.pid
   sleep 2
 fi
-while running svgf-bench && [ "$(left)" -gt 15 ]; do sleep 3; done
+while running quality && [ "$(left)" -gt 15 ]; do sleep 3; done
 cp /tmp/svgf-eval-render.log "$out/eval-render.log" 2>/dev/null
 cp /tmp/svgf-eval-quality.log "$out/eval-quality.log" 2>/dev/null
 tail -c 200 /tmp/svgf-eval-render.log 2>/dev/null; echo
 if [ -f /tmp/svgf-eval-quality.json ]; then
   cp /tmp/svgf-eval-quality.json "$out/eval_quality.json"
   echo "eval_on_device: done: $out/eval_quality.json"
-elif running svgf-bench; then
+elif running quality; then
   echo "eval_on_device: quality running ($(grep -c PSNR /tmp/svgf-eval-quality.log) results so far): call again"
-elif running svgf-fixtures; then
+elif running render; then
   echo "eval_on_device: rendering: call again"
 else
   echo "eval_on_device: stopped without a result: see $out/eval-render.log and eval-quality.log"
