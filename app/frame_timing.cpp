@@ -1,18 +1,8 @@
 #include "app/frame_timing.h"
 
-#include <algorithm>
+#include "core/order_stats.h"
 
 namespace svgf::app {
-
-double median(std::vector<double> values) {
-  if (values.empty()) return 0;
-  const size_t mid = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(mid), values.end());
-  const double upper = values[mid];
-  if (values.size() % 2 == 1) return upper;
-  const double lower = *std::max_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(mid));
-  return (lower + upper) / 2;
-}
 
 TimingSummary summarize_timing(const std::vector<FrameTimes>& frames, double loop_ms,
                                int in_flight) {
@@ -28,9 +18,9 @@ TimingSummary summarize_timing(const std::vector<FrameTimes>& frames, double loo
     write.push_back(f.write_ms);
     sum += f.read_ms + f.denoise_ms + f.write_ms;
   }
-  t.median_read_ms = median(read);
-  t.median_denoise_ms = median(denoise);
-  t.median_write_ms = median(write);
+  t.median_read_ms = order_stats(read).median;
+  t.median_denoise_ms = order_stats(denoise).median;
+  t.median_write_ms = order_stats(write).median;
   t.stage_sum_ms_per_frame = sum / t.frames;
   t.wall_ms_per_frame = loop_ms / t.frames;
   t.speedup = loop_ms > 0 ? sum / loop_ms : 0;

@@ -23,9 +23,6 @@ struct TimingSummary {
   double speedup = 0;                 // stage sum / wall: what overlapping the stages gained
 };
 
-// The median: the middle value, the mean of the two middle ones for an even count, 0 for none.
-double median(std::vector<double> values);
-
 // `loop_ms`: the frame loop's wall time; `in_flight`: the frames it held at most.
 TimingSummary summarize_timing(const std::vector<FrameTimes>& frames, double loop_ms,
                                int in_flight);

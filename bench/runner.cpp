@@ -12,7 +12,7 @@
 #include "bench/host_probe.h"
 #include "bench/quality.h"
 #include "bench/stage_cost.h"
-#include "bench/stats.h"
+#include "core/order_stats.h"
 #include "methods/bmfr/denoiser.h"
 
 namespace svgf::bench {
@@ -25,7 +25,7 @@ double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
-json summary_json(const Summary& s) {
+json summary_json(const OrderStats& s) {
   return {{"median", s.median}, {"p95", s.p95}, {"mean", s.mean},
           {"min", s.min},       {"max", s.max}, {"count", s.count}};
 }
@@ -137,7 +137,7 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
       {"gradient_samples", fs.gradient_samples()}};
   j["warmup"] = t.warmup;
   j["frames"] = timed;
-  const Summary filter = summarize(filter_ms), wall = summarize(wall_ms);
+  const OrderStats filter = order_stats(filter_ms), wall = order_stats(wall_ms);
   j["frame_ms"] = {{"filter", summary_json(filter)}, {"wall", summary_json(wall)}};
   j["frame_mpix_per_s"] = filter.median > 0 ? pixels / (filter.median * 1e3) : 0.0;
   j["ceilings"] = {{"copy_gbs", ceilings.copy_gbs},
@@ -149,7 +149,7 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
   double floor_total = 0, bytes_total = 0, ops_total = 0;
   for (size_t si = 0; si < stage_names.size(); ++si) {
     const std::string& name = stage_names[si];
-    const Summary st = summarize(stage_ms[si]);
+    const OrderStats st = order_stats(stage_ms[si]);
     const std::optional<StageCost> counted =
         costed ? method_stage_cost(c.denoiser, name, traits) : std::nullopt;
     const StageCost cost = counted.value_or(StageCost{});
@@ -260,7 +260,7 @@ class BlockDiagnostics {
   }
   std::optional<json> result() const {
     if (!active_) return std::nullopt;
-    const Summary s = summarize(condition_);
+    const OrderStats s = order_stats(condition_);
     return json{{"blocks", blocks_},           {"rank_deficient", deficient_},
                 {"empty", empty_},             {"condition_median", s.median},
                 {"condition_p95", s.p95},      {"condition_max", s.max}};

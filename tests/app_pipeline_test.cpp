@@ -21,6 +21,7 @@
 #include "app/method_options.h"
 #include "app_test_support.h"
 #include "cli/command_line.h"
+#include "core/order_stats.h"
 #include "io/exr_frame.h"
 #include "io/sequence.h"
 #include "pipeline/make_denoiser.h"
@@ -216,9 +217,9 @@ TEST_CASE("run_frame_pipeline: a failure reaches the last stage with its item, a
 }
 
 TEST_CASE("frame timing: medians, the stages' sum against the wall time", "[app][pipeline]") {
-  CHECK(app::median({}) == 0);
-  CHECK(app::median({3, 1, 2}) == 2);
-  CHECK(app::median({4, 1, 3, 2}) == 2.5);
+  CHECK(order_stats({}).median == 0);
+  CHECK(order_stats({3, 1, 2}).median == 2);
+  CHECK(order_stats({4, 1, 3, 2}).median == 2.5);
   const app::TimingSummary t = app::summarize_timing({{1, 2, 3}, {3, 4, 5}, {2, 9, 4}}, 12, 3);
   CHECK(t.median_read_ms == 2);
   CHECK(t.median_denoise_ms == 4);

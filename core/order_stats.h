@@ -1,20 +1,20 @@
 #pragma once
-// Order statistics of per-frame timings.
+// Order statistics of per-frame timings (the benchmark's and svgf denoise's timing summary).
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
-namespace svgf::bench {
+namespace svgf {
 
-struct Summary {
+struct OrderStats {
   double median = 0, p95 = 0, mean = 0, min = 0, max = 0;
   int count = 0;
 };
 
 // Median (mean of the middle two for an even count) and p95 by nearest rank: the smallest value
 // with at least 95% of the samples at or below it.
-inline Summary summarize(std::vector<double> v) {
-  Summary s;
+inline OrderStats order_stats(std::vector<double> v) {
+  OrderStats s;
   s.count = static_cast<int>(v.size());
   if (v.empty()) return s;
   std::sort(v.begin(), v.end());
@@ -30,4 +30,4 @@ inline Summary summarize(std::vector<double> v) {
   return s;
 }
 
-}  // namespace svgf::bench
+}  // namespace svgf
