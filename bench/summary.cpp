@@ -276,8 +276,8 @@ void pareto_fronts(std::ostringstream& md, const std::vector<Point>& pts) {
     }
 }
 
-// The evaluation set's means over all scenes and over the clean-reference scenes, and which
-// scenes were left out and why (eval_quality.h).
+// The evaluation set's means over all scenes and over the clean-reference scenes, each scene's
+// reference noise, and which scenes were left out and why (eval_quality.h).
 void eval_set_means(std::ostringstream& md, const Results& r) {
   const json& q = r.eval_quality;
   const json& scenes = q["set"]["scenes"];
@@ -288,18 +288,24 @@ void eval_set_means(std::ostringstream& md, const Results& r) {
        << " frames, " << scenes[0]["reference_spp"] << "-spp references";
   md << "; " << q.value("backend", "") << ", SVGF split " << q.value("svgf_split", "")
      << "; measured " << q.value("started", "") << " on " << q["host"].value("cpu_model", "")
-     << " (`" << q.value("command", "") << "`).\n\nLeft out of the clean means (reference "
-     << "noise PSNR below " << q.value("clean_reference_db", 0.0)
-     << " dB, docs/gbuffer.md \"Reference noise\"): ";
+     << " (`" << q.value("command", "") << "`).\n\nReference noise per scene (mean MSE over the "
+        "frames, from each reference's two halves, as PSNR; the share of it at PSNR's clamp):";
+  for (const json& s : scenes)
+    md << (&s == &scenes[0] ? " " : ", ") << "`" << s["scene"].get<std::string>() << "` "
+       << fmt(num(s.value("reference_noise_db", json())), 2) << " dB ("
+       << fmt(100 * num(s.value("reference_noise_clamped_share", json())), 1) << "%)";
+  md << ".\n\nThe clean means' PSNR has each frame's reference noise taken out (`psnr_corrected`:"
+        " the PSNR against the true image); FLIP is as measured. Left out of the clean means: ";
   const json& left = q["left_out_scenes"];
   if (left.empty()) md << "none";
   for (size_t i = 0; i < left.size(); ++i)
     md << (i ? ", " : "") << "`" << left[i]["scene"].get<std::string>() << "` ("
        << left[i].value("why", "") << ")";
-  md << ".\n\n| configuration | PSNR dB, all | PSNR dB, clean | FLIP, all | FLIP, clean |\n"
-        "|---|---:|---:|---:|---:|\n";
+  md << ".\n\n| configuration | PSNR dB, all (measured) | PSNR dB, clean (measured) | "
+        "PSNR dB, clean (corrected) | FLIP, all | FLIP, clean |\n|---|---:|---:|---:|---:|---:|\n";
   for (const json& m : q["means"])
     md << "| " << m["key"].get<std::string>() << " | " << fmt(num(m["all"]["psnr"]), 2) << " | "
+       << fmt(num(m["clean"].value("psnr_measured", json())), 2) << " | "
        << fmt(num(m["clean"]["psnr"]), 2) << " | " << fmt(num(m["all"]["flip"]), 4) << " | "
        << fmt(num(m["clean"]["flip"]), 4) << " |\n";
 }

@@ -1,5 +1,6 @@
 #include "gbuffer/eval_record.h"
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -15,12 +16,34 @@ namespace svgf::gbuffer {
 namespace {
 
 constexpr const char* kFormat = "svgf-eval-sequence";
-constexpr int kFormatVersion = 1;
+// Version 2 added the reference noise per frame; a version 1 record reads with none recorded.
+constexpr int kFormatVersion = 2;
 
 std::string record_path(const std::string& dir) { return (fs::path(dir) / "eval.json").string(); }
 
 std::string size_of(const EvalRecord& r) {
   return std::to_string(r.width) + "x" + std::to_string(r.height);
+}
+
+// One number per frame, null where there is none (NaN); absent (older records): all NaN.
+std::vector<double> read_per_frame(const nlohmann::json& j, const char* key, int frames) {
+  std::vector<double> v(static_cast<size_t>(frames), std::nan(""));
+  if (!j.contains(key)) return v;
+  const nlohmann::json& a = j.at(key);
+  if (!a.is_array() || static_cast<int>(a.size()) != frames)
+    throw std::runtime_error(std::string("'") + key + "' does not list one entry per frame");
+  for (size_t k = 0; k < a.size(); ++k)
+    if (!a[k].is_null()) v[k] = a[k].get<double>();
+  return v;
+}
+
+nlohmann::ordered_json per_frame_json(const std::vector<double>& v, int frames) {
+  nlohmann::ordered_json a = nlohmann::ordered_json::array();
+  for (int k = 0; k < frames; ++k) {
+    const double x = k < static_cast<int>(v.size()) ? v[static_cast<size_t>(k)] : std::nan("");
+    a.push_back(std::isfinite(x) ? nlohmann::ordered_json(x) : nlohmann::ordered_json(nullptr));
+  }
+  return a;
 }
 
 }  // namespace
@@ -30,6 +53,21 @@ bool EvalRecord::complete() const {
   for (const std::string& s : sha256)
     if (s.empty()) return false;
   return true;
+}
+
+SequenceNoise sequence_reference_noise(const EvalRecord& r) {
+  const SequenceNoise none{std::nan(""), std::nan("")};
+  const size_t n = static_cast<size_t>(r.frames);
+  if (r.frames < 1 || r.reference_noise_mse.size() != n || r.reference_noise_clamped_share.size() != n)
+    return none;
+  double sum = 0, clamped = 0;
+  for (size_t k = 0; k < n; ++k) {
+    const double v = r.reference_noise_mse[k], share = r.reference_noise_clamped_share[k];
+    if (!std::isfinite(v) || !std::isfinite(share)) return none;
+    sum += v;
+    clamped += v * share;
+  }
+  return {sum / r.frames, sum > 0 ? clamped / sum : 0.0};
 }
 
 std::vector<std::string> parameter_differences(const EvalRecord& c, const EvalRecord& w) {
@@ -57,9 +95,10 @@ std::optional<EvalRecord> read_eval_record(const std::string& dir) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw std::runtime_error("cannot open it");
     const nlohmann::json j = nlohmann::json::parse(in);
-    if (j.at("format").get<std::string>() != kFormat ||
-        j.at("format_version").get<int>() != kFormatVersion)
-      throw std::runtime_error("not an eval.json of format version " +
+    const int version = j.at("format").get<std::string>() == kFormat
+                            ? j.at("format_version").get<int>() : 0;
+    if (version < 1 || version > kFormatVersion)
+      throw std::runtime_error("not an eval.json of format version 1 to " +
                                std::to_string(kFormatVersion));
     EvalRecord r;
     r.scene = j.at("scene").get<std::string>();
@@ -75,6 +114,9 @@ std::optional<EvalRecord> read_eval_record(const std::string& dir) {
     r.sha256 = j.at("sha256").get<std::vector<std::string>>();
     if (r.frames < 1 || static_cast<int>(r.sha256.size()) != r.frames)
       throw std::runtime_error("'sha256' does not list one entry per frame");
+    r.reference_noise_mse = read_per_frame(j, "reference_noise_mse", r.frames);
+    r.reference_noise_se = read_per_frame(j, "reference_noise_se", r.frames);
+    r.reference_noise_clamped_share = read_per_frame(j, "reference_noise_clamped_share", r.frames);
     return r;
   } catch (const std::exception& e) {
     throw std::runtime_error(path + ": unreadable: " + e.what());
@@ -96,6 +138,9 @@ void write_eval_record(const std::string& dir, const EvalRecord& r) {
   j["split"] = r.split;
   j["gradients"] = r.gradients;
   j["sha256"] = r.sha256;  // "" for a frame not written yet
+  j["reference_noise_mse"] = per_frame_json(r.reference_noise_mse, r.frames);  // null: none
+  j["reference_noise_se"] = per_frame_json(r.reference_noise_se, r.frames);
+  j["reference_noise_clamped_share"] = per_frame_json(r.reference_noise_clamped_share, r.frames);
   io::write_file_atomically(record_path(dir), j.dump(2) + "\n");
 }
 

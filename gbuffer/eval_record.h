@@ -1,7 +1,7 @@
 #pragma once
 // eval.json, the evaluation set's record of one sequence folder (eval_set.h): the parameters it
-// is rendered with and the SHA-256 of each frame written so far, so a later run can tell which
-// frames to keep and whether the parameters changed.
+// is rendered with, the SHA-256 of each frame written so far (so a later run can tell which
+// frames to keep and whether the parameters changed) and each frame's reference noise.
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -16,9 +16,19 @@ struct EvalRecord {
   uint64_t seed = 0;
   bool split = false, gradients = false;
   std::vector<std::string> sha256;  // per frame; "" where none is written yet
+  // Per frame, the reference's noise (renderer.h, ReferenceNoise): NaN where none is recorded
+  // (not written yet, a reference under 2 samples, or a record from before it was kept).
+  std::vector<double> reference_noise_mse, reference_noise_se, reference_noise_clamped_share;
 
   bool complete() const;
 };
+
+// The frames' mean reference noise MSE, and the share of it at the clamp (ReferenceNoise's
+// clamped_share over the whole sequence); NaN unless every frame has them.
+struct SequenceNoise {
+  double mse, clamped_share;
+};
+SequenceNoise sequence_reference_noise(const EvalRecord& record);
 
 // The parameters that differ, as "size 320x180 in the cache, 640x360 asked" phrases.
 std::vector<std::string> parameter_differences(const EvalRecord& cached, const EvalRecord& wanted);

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -37,6 +38,9 @@ EvalRecord wanted_record(const EvalSequence& seq, const EvalParams& p) {
   r.split = seq.settings.split;
   r.gradients = seq.settings.gradients;
   r.sha256.assign(static_cast<size_t>(p.frames), "");
+  r.reference_noise_mse.assign(static_cast<size_t>(p.frames), std::nan(""));
+  r.reference_noise_se.assign(static_cast<size_t>(p.frames), std::nan(""));
+  r.reference_noise_clamped_share.assign(static_cast<size_t>(p.frames), std::nan(""));
   return r;
 }
 
@@ -199,6 +203,9 @@ EvalPlan plan_eval_sequence(const EvalSequence& seq, const EvalParams& p) {
       problem = "missing";
     else if (exists && io::sha256_file(path) != recorded)
       problem = "its SHA-256 differs from eval.json's";
+    else if (exists && p.reference_spp >= 2 &&
+             !std::isfinite(cached->reference_noise_mse[static_cast<size_t>(k)]))
+      problem = "no reference noise in eval.json (rendered before it was recorded)";
     if (exists && problem.empty()) {
       ++plan.kept;
       continue;
@@ -225,17 +232,29 @@ void render_eval_sequence(const Renderer& renderer, const EvalSequence& seq, con
     if (!cached || !parameter_differences(*cached, record).empty())
       throw std::runtime_error(seq.dir + ": eval.json changed since it was read; run again");
     record.sha256 = cached->sha256;
+    record.reference_noise_mse = cached->reference_noise_mse;
+    record.reference_noise_se = cached->reference_noise_se;
+    record.reference_noise_clamped_share = cached->reference_noise_clamped_share;
   }
   if (!plan.to_render.empty()) {
     fs::remove(fs::path(seq.dir) / "manifest.json");  // the sequence is incomplete until the end
-    for (int k : plan.to_render) record.sha256[static_cast<size_t>(k)].clear();
+    for (int k : plan.to_render) {
+      record.sha256[static_cast<size_t>(k)].clear();
+      record.reference_noise_mse[static_cast<size_t>(k)] = std::nan("");
+      record.reference_noise_se[static_cast<size_t>(k)] = std::nan("");
+      record.reference_noise_clamped_share[static_cast<size_t>(k)] = std::nan("");
+    }
     write_eval_record(seq.dir, record);
   }
   for (int k : plan.to_render) {
-    const Frame f = renderer.render(seq.scene, k, seq.settings, counters);
+    ReferenceNoise noise;
+    const Frame f = renderer.render(seq.scene, k, seq.settings, counters, &noise);
     const std::string path = frame_path(seq, k);
     io::write_frame(path, f, fixture_storage());  // a temporary name, then renamed
     record.sha256[static_cast<size_t>(k)] = io::sha256_file(path);
+    record.reference_noise_mse[static_cast<size_t>(k)] = noise.mse;
+    record.reference_noise_se[static_cast<size_t>(k)] = noise.standard_error;
+    record.reference_noise_clamped_share[static_cast<size_t>(k)] = noise.clamped_share;
     write_eval_record(seq.dir, record);
     if (on_frame) on_frame(k);
   }

@@ -4,9 +4,11 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "gbuffer/gbuffer.h"
 #include "gbuffer/gradient_samples.h"
@@ -44,10 +46,15 @@ struct PixelRadiance {
   Vec3 color, direct, indirect;
 };
 
-// Mean over `count` samples of one stream, summed in double in sample order.
+// Mean over `count` samples of one stream, summed in double in sample order. `halves`, when
+// given, also receives the color's mean over samples [0, count/2) and over the rest (summed
+// apart, so the mean itself is the same with or without them).
 PixelRadiance estimate(const FrameScene& scene, const RenderSettings& settings, int x, int y,
-                       const Hit& primary, Vec3 dir, Stream stream, int count, uint64_t& rays) {
+                       const Hit& primary, Vec3 dir, Stream stream, int count, uint64_t& rays,
+                       Vec3 (*halves)[2] = nullptr) {
   double sum[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+  double half_sum[2][3] = {{0, 0, 0}, {0, 0, 0}};
+  const int first_half = count / 2;
   for (int s = 0; s < count; ++s) {
     const SampleKey key = sample_key(settings, x, y, scene.frame(), s, stream);
     const Radiance r = trace_path(scene, primary, dir, key, settings.path, rays);
@@ -58,12 +65,41 @@ PixelRadiance estimate(const FrameScene& scene, const RenderSettings& settings, 
       sum[3 * k + 1] += parts[k].y;
       sum[3 * k + 2] += parts[k].z;
     }
+    double* h = half_sum[s < first_half ? 0 : 1];
+    h[0] += c.x;
+    h[1] += c.y;
+    h[2] += c.z;
   }
   float mean[9];
   for (int k = 0; k < 9; ++k) mean[k] = static_cast<float>(sum[k] / count);
+  if (halves && first_half > 0) {
+    const int n[2] = {first_half, count - first_half};
+    for (int k = 0; k < 2; ++k)
+      (*halves)[k] = make_vec3(static_cast<float>(half_sum[k][0] / n[k]),
+                               static_cast<float>(half_sum[k][1] / n[k]),
+                               static_cast<float>(half_sum[k][2] / n[k]));
+  }
   return {make_vec3(mean[0], mean[1], mean[2]), make_vec3(mean[3], mean[4], mean[5]),
           make_vec3(mean[6], mean[7], mean[8])};
 }
+
+// One pixel's part of ReferenceNoise (renderer.h): (clamp(a) - clamp(b))^2 per channel, scaled
+// to the variance of the whole reference; its sum and sum of squares.
+struct NoiseSums {
+  double sum = 0, squares = 0, at_clamp = 0;
+  void add(const Vec3 (&halves)[2], double scale) {
+    const float a[3] = {halves[0].x, halves[0].y, halves[0].z};
+    const float b[3] = {halves[1].x, halves[1].y, halves[1].z};
+    for (int c = 0; c < 3; ++c) {
+      const double d = static_cast<double>(std::clamp(a[c], 0.f, 1.f)) -
+                       static_cast<double>(std::clamp(b[c], 0.f, 1.f));
+      const double v = d * d * scale;
+      sum += v;
+      squares += v * v;
+      if (a[c] > 1.f || b[c] > 1.f) at_clamp += v;
+    }
+  }
+};
 
 void store(Image& im, int i, Vec3 v) {
   im.plane(0)[i] = v.x;
@@ -74,7 +110,7 @@ void store(Image& im, int i, Vec3 v) {
 }  // namespace
 
 Frame Renderer::render(const SceneDesc& desc, int frame, const RenderSettings& settings,
-                       RenderCounters* counters) const {
+                       RenderCounters* counters, ReferenceNoise* noise) const {
   validate(settings);
   if (frame < 0) throw std::invalid_argument("frame " + std::to_string(frame) + " < 0");
   const int w = settings.width, h = settings.height;
@@ -89,6 +125,12 @@ Frame Renderer::render(const SceneDesc& desc, int frame, const RenderSettings& s
     f.indirect = Image(w, h, 3);
   }
   f.camera = scene.camera().matrices();
+  // The reference's noise (renderer.h): summed per row, then over rows in order, so the estimate
+  // does not depend on the thread count.
+  const int n = settings.reference_spp, n1 = n / 2;
+  const bool estimate_noise = noise != nullptr && n >= 2;
+  const double noise_scale = static_cast<double>(n1) * (n - n1) / (static_cast<double>(n) * n);
+  std::vector<NoiseSums> noise_rows(estimate_noise ? static_cast<size_t>(h) : 0);
 
   tbb::parallel_for(tbb::blocked_range<int>(0, h, 1), [&](const tbb::blocked_range<int>& rows) {
     for (int y = rows.begin(); y < rows.end(); ++y) {
@@ -120,9 +162,12 @@ Frame Renderer::render(const SceneDesc& desc, int frame, const RenderSettings& s
           store(f.indirect, i, c.indirect);
         }
         if (settings.reference_spp > 0) {
+          Vec3 halves[2];
           const PixelRadiance r = estimate(scene, settings, x, y, hit, dir, Stream::Reference,
-                                           settings.reference_spp, rays);
+                                           settings.reference_spp, rays,
+                                           estimate_noise ? &halves : nullptr);
           store(f.reference, i, r.color);
+          if (estimate_noise) noise_rows[static_cast<size_t>(y)].add(halves, noise_scale);
         }
       }
       if (counters) {
@@ -132,6 +177,24 @@ Frame Renderer::render(const SceneDesc& desc, int frame, const RenderSettings& s
     }
   });
   if (counters && counters->cancel.load()) throw std::runtime_error("rendering interrupted");
+  if (noise) {
+    *noise = ReferenceNoise{};
+    if (estimate_noise) {
+      // Pixels without a surface have an exact reference (0) and add 0 to the sums.
+      NoiseSums total;
+      for (const NoiseSums& r : noise_rows) {
+        total.sum += r.sum;
+        total.squares += r.squares;
+        total.at_clamp += r.at_clamp;
+      }
+      const double count = 3.0 * static_cast<double>(w) * h;
+      const double mean = total.sum / count;
+      const double variance = std::max(0.0, total.squares / count - mean * mean);
+      noise->mse = mean;
+      noise->standard_error = std::sqrt(variance / count);
+      noise->clamped_share = total.sum > 0 ? total.at_clamp / total.sum : 0.0;
+    }
+  }
   if (settings.gradients) {
     // No earlier frame of this shot: the group is there, with no samples.
     const std::vector<int>& cuts = desc.camera_cuts;

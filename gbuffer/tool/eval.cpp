@@ -1,6 +1,7 @@
 // svgf-fixtures eval: renders the evaluation set into its cache, resuming frame by frame.
 #include <tbb/global_control.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -8,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "gbuffer/eval_record.h"
 #include "gbuffer/eval_set.h"
 #include "gbuffer/renderer.h"
 #include "gbuffer/scenes.h"
@@ -20,6 +22,17 @@ namespace fs = std::filesystem;
 namespace svgf::gbuffer::tool {
 
 namespace {
+
+// ", reference noise 40.84 dB (0.0% of it at the clamp)" from the folder's eval.json (renderer.h, ReferenceNoise), or "".
+std::string reference_noise_phrase(const std::string& dir) {
+  const std::optional<EvalRecord> r = read_eval_record(dir);
+  const SequenceNoise noise = r ? sequence_reference_noise(*r) : SequenceNoise{0, 0};
+  if (!(noise.mse > 0)) return "";
+  char buf[96];
+  std::snprintf(buf, sizeof buf, ", reference noise %.2f dB (%.1f%% of it at the clamp)",
+                -10.0 * std::log10(noise.mse), 100.0 * noise.clamped_share);
+  return buf;
+}
 
 struct EvalArgs {
   std::vector<std::string> names;
@@ -103,8 +116,9 @@ int run_eval(const EvalArgs& a) {
   }
   const double rays = static_cast<double>(counters.rays.load());
   for (size_t i = 0; i < seqs.size(); ++i)
-    std::printf("%s: %d frames (%zu rendered, %d cached) -> %s\n", seqs[i].scene.name.c_str(),
-                params.frames, plans[i].to_render.size(), plans[i].kept, seqs[i].dir.c_str());
+    std::printf("%s: %d frames (%zu rendered, %d cached)%s -> %s\n", seqs[i].scene.name.c_str(),
+                params.frames, plans[i].to_render.size(), plans[i].kept,
+                reference_noise_phrase(seqs[i].dir).c_str(), seqs[i].dir.c_str());
   std::printf("eval: %d frames rendered in %.1f s (%.2f s per frame, %s)\n", rendered, seconds,
               rendered ? seconds / rendered : 0.0,
               format_rate(seconds > 0 ? rays / seconds : 0).c_str());

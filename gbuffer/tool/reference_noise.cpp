@@ -1,7 +1,9 @@
 // svgf-fixtures reference-noise: how noisy a reference of the evaluation set is. Renders one
 // frame's reference with two seeds and prints the PSNR between them (metrics::psnr, the PSNR
 // every report uses); their noise is independent, so one reference against the true image is
-// 10 log10(2) = 3.01 dB better.
+// 10 log10(2) = 3.01 dB better. Beside it, the first reference's estimate from its own two
+// halves (renderer.h, ReferenceNoise; what eval.json records per frame), with its standard
+// error in dB: the two should agree.
 #include <tbb/global_control.h>
 
 #include <algorithm>
@@ -68,20 +70,23 @@ int run_reference_noise(const NoiseArgs& a) {
     limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
                                                   static_cast<size_t>(a.threads));
   const Renderer renderer;
-  std::printf("%-15s %5s %9s %7s %14s %16s\n", "scene", "frame", "size", "ref-spp",
-              "PSNR A vs B dB", "one ref noise dB");
+  std::printf("%-15s %5s %9s %7s %14s %16s %18s %7s\n", "scene", "frame", "size", "ref-spp",
+              "PSNR A vs B dB", "one ref noise dB", "A's halves dB (se)", "clamped");
   for (EvalSequence& s : seqs) {
     s.settings.gradients = false;
     RenderSettings other = s.settings;
     other.seed = s.settings.seed + 1;
     RenderCounters counters;  // cancel on Ctrl-C
-    const Frame fa = renderer.render(s.scene, a.frame, s.settings, &counters);
+    ReferenceNoise halves;  // A's own estimate from its two halves (renderer.h)
+    const Frame fa = renderer.render(s.scene, a.frame, s.settings, &counters, &halves);
     if (interrupted()) return 130;
     const Frame fb = renderer.render(s.scene, a.frame, other, &counters);
     const double between = metrics::psnr(fa.reference, fb.reference);
-    std::printf("%-15s %5d %4dx%-4d %7d %14.2f %16.2f\n", s.scene.name.c_str(), a.frame,
-                params.width, params.height, params.reference_spp, between,
-                between + 10.0 * std::log10(2.0));
+    const double halves_db = -10.0 * std::log10(halves.mse);
+    const double se_db = 10.0 * std::log10((halves.mse + halves.standard_error) / halves.mse);
+    std::printf("%-15s %5d %4dx%-4d %7d %14.2f %16.2f %11.2f (%.2f) %7.3f\n", s.scene.name.c_str(),
+                a.frame, params.width, params.height, params.reference_spp, between,
+                between + 10.0 * std::log10(2.0), halves_db, se_db, halves.clamped_share);
     std::fflush(stdout);
     if (!a.diff_dir.empty()) {
       std::filesystem::create_directories(a.diff_dir);
