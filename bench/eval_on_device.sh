@@ -34,6 +34,9 @@ if [ ! -f "$set_dir/.rendered" ] && ! running render; then
 fi
 while [ ! -f "$set_dir/.rendered" ] && running render && [ "$(left)" -gt 15 ]; do sleep 3; done
 if [ -f "$set_dir/.rendered" ] && [ ! -f /tmp/svgf-eval-quality.json ] && ! running quality; then
+  # glibc's malloc keeps freed memory (a 640x360 plane is ~1 MB, mmap'ed and page-faulted anew
+  # on every frame otherwise: a quarter of the run's CPU time in the kernel).
+  GLIBC_TUNABLES=glibc.malloc.mmap_threshold=268435456:glibc.malloc.trim_threshold=1073741824 \
   setsid nohup "$run" svgf-bench quality --set "$set_dir" --out /tmp/svgf-eval-quality.json \
     >>/tmp/svgf-eval-quality.log 2>&1 </dev/null &
   echo $! >/tmp/svgf-eval-quality.pid
@@ -47,7 +50,7 @@ if [ -f /tmp/svgf-eval-quality.json ]; then
   cp /tmp/svgf-eval-quality.json "$out/eval_quality.json"
   echo "eval_on_device: done: $out/eval_quality.json"
 elif running quality; then
-  echo "eval_on_device: quality running ($(grep -c PSNR /tmp/svgf-eval-quality.log) results so far): call again"
+  echo "eval_on_device: quality running ($(grep -o '\[[0-9]*/[0-9]*\]' /tmp/svgf-eval-quality.log | tail -1) pairs measured): call again"
 elif running render; then
   echo "eval_on_device: rendering: call again"
 else

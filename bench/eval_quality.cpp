@@ -1,6 +1,8 @@
 #include "bench/eval_quality.h"
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -177,6 +179,9 @@ int run_eval_quality(const EvalQualityOptions& o) {
   std::vector<std::vector<json>> results(configs.size(), std::vector<json>(sets.size()));
   std::vector<std::vector<std::string>> errors(configs.size(),
                                                std::vector<std::string>(sets.size()));
+  const size_t pairs = configs.size() * sets.size();
+  std::atomic<size_t> done{0};
+  const auto started = std::chrono::steady_clock::now();
   auto one = [&](size_t c, size_t i) {
     RunConfig config = configs[c];
     if (config.project()) config.denoiser.threads = 1;
@@ -186,6 +191,10 @@ int run_eval_quality(const EvalQualityOptions& o) {
       errors[c][i] = ex.what();
       if (errors[c][i].empty()) errors[c][i] = "failed";
     }
+    // Progress on stderr as pairs finish (the results are printed in order at the end).
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    std::fprintf(stderr, "svgf-bench quality: [%zu/%zu] %.0f s %s on %s\n", ++done, pairs, s,
+                 configs[c].key().c_str(), sets[i].scene.c_str());
   };
   std::vector<std::pair<size_t, size_t>> side_by_side;
   for (size_t c = 0; c < configs.size(); ++c)
