@@ -13,6 +13,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "metrics/separable_filter.h"
+
 namespace svgf::metrics {
 namespace {
 
@@ -100,30 +102,6 @@ double hyab(const double a[3], const double b[3]) {
   return std::abs(a[0] - b[0]) + std::sqrt(da * da + db * db);
 }
 
-// Separable convolution, rows with kx then columns with ky, edges clamped (the image's border
-// pixel repeats). Kernels have odd length, centred.
-std::vector<double> convolve(const std::vector<double>& src, int w, int h,
-                             const std::vector<double>& kx, const std::vector<double>& ky) {
-  const int rx = static_cast<int>(kx.size() / 2), ry = static_cast<int>(ky.size() / 2);
-  std::vector<double> tmp(src.size()), out(src.size());
-  for (int y = 0; y < h; ++y) {
-    const double* row = &src[static_cast<size_t>(y) * w];
-    for (int x = 0; x < w; ++x) {
-      double s = 0;
-      for (int d = -rx; d <= rx; ++d) s += kx[d + rx] * row[std::min(std::max(x + d, 0), w - 1)];
-      tmp[static_cast<size_t>(y) * w + x] = s;
-    }
-  }
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      double s = 0;
-      for (int d = -ry; d <= ry; ++d)
-        s += ky[d + ry] * tmp[static_cast<size_t>(std::min(std::max(y + d, 0), h - 1)) * w + x];
-      out[static_cast<size_t>(y) * w + x] = s;
-    }
-  return out;
-}
-
 // CSF filtering of one opponent channel: the sum of its Gaussian terms, each separable, with the
 // 2-D kernel normalized to sum to 1.
 std::vector<double> csf_filter(const std::vector<double>& src, int w, int h, int channel,
@@ -145,8 +123,9 @@ std::vector<double> csf_filter(const std::vector<double>& src, int w, int h, int
     total += amplitude * sum * sum;  // this term's 2-D kernel sum
   }
   std::vector<double> out(src.size(), 0.0);
+  thread_local std::vector<double> part;  // reused: a fresh plane per call is page-faulted anew
   for (size_t t = 0; t < g.size(); ++t) {
-    const std::vector<double> part = convolve(src, w, h, g[t], g[t]);
+    separable_convolve(src, w, h, g[t], g[t], FilterBorder::clamp, part);
     const double s = scale[t] / total;
     for (size_t i = 0; i < out.size(); ++i) out[i] += s * part[i];
   }
@@ -211,10 +190,12 @@ Prepared prepare(const Image& im) {
 // Edge and point magnitudes of the normalized achromatic channel.
 void features(const std::vector<double>& y, int w, int h, const FeatureKernels& k,
               std::vector<double>& edge, std::vector<double>& point) {
-  const std::vector<double> ex = convolve(y, w, h, k.edge, k.g);
-  const std::vector<double> ey = convolve(y, w, h, k.g, k.edge);
-  const std::vector<double> px = convolve(y, w, h, k.point, k.g);
-  const std::vector<double> py = convolve(y, w, h, k.g, k.point);
+  // Reused per thread: fresh planes per call would be page-faulted anew.
+  thread_local std::vector<double> ex, ey, px, py;
+  separable_convolve(y, w, h, k.edge, k.g, FilterBorder::clamp, ex);
+  separable_convolve(y, w, h, k.g, k.edge, FilterBorder::clamp, ey);
+  separable_convolve(y, w, h, k.point, k.g, FilterBorder::clamp, px);
+  separable_convolve(y, w, h, k.g, k.point, FilterBorder::clamp, py);
   edge.resize(y.size());
   point.resize(y.size());
   for (size_t i = 0; i < y.size(); ++i) {

@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "metrics/separable_filter.h"
+
 namespace svgf::metrics {
 namespace {
 
@@ -15,14 +17,6 @@ constexpr double kC2 = 0.03 * 0.03;  // (K2 L)^2
 
 double clamp01(double v) { return std::isnan(v) ? 0.0 : std::min(1.0, std::max(0.0, v)); }
 
-// Mirror index without repeating the edge (…2 1 | 0 1 2 … n-1 | n-2 …), folded as often as a
-// window wider than the image needs.
-int reflect101(int p, int n) {
-  if (n == 1) return 0;
-  while (p < 0 || p >= n) p = p < 0 ? -p : 2 * (n - 1) - p;
-  return p;
-}
-
 std::vector<double> gaussian_window() {
   std::vector<double> k(2 * kRadius + 1);
   double sum = 0;
@@ -32,33 +26,14 @@ std::vector<double> gaussian_window() {
   return k;
 }
 
-// Separable Gaussian blur in double, rows then columns.
-std::vector<double> blur(const std::vector<double>& src, int w, int h,
-                         const std::vector<double>& k) {
-  std::vector<double> tmp(src.size()), out(src.size());
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      double s = 0;
-      for (int d = -kRadius; d <= kRadius; ++d)
-        s += k[d + kRadius] * src[static_cast<size_t>(y) * w + reflect101(x + d, w)];
-      tmp[static_cast<size_t>(y) * w + x] = s;
-    }
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      double s = 0;
-      for (int d = -kRadius; d <= kRadius; ++d)
-        s += k[d + kRadius] * tmp[static_cast<size_t>(reflect101(y + d, h)) * w + x];
-      out[static_cast<size_t>(y) * w + x] = s;
-    }
-  return out;
-}
-
 // SSIM map of channel c in double; the mean is taken from these, not from the float map.
 std::vector<double> channel_map(const Image& test, const Image& reference, int c,
                                 const std::vector<double>& k) {
   const int w = test.width(), h = test.height();
   const size_t n = test.pixel_count();
-  std::vector<double> a(n), b(n), aa(n), bb(n), ab(n);
+  // Planes reused per thread: fresh ones per call would be mmap'ed and page-faulted anew.
+  thread_local std::vector<double> a, b, aa, bb, ab, mu_a, mu_b, e_aa, e_bb, e_ab;
+  for (auto* plane : {&a, &b, &aa, &bb, &ab}) plane->resize(n);
   for (size_t i = 0; i < n; ++i) {
     a[i] = clamp01(test.plane(c)[i]);
     b[i] = clamp01(reference.plane(c)[i]);
@@ -66,9 +41,11 @@ std::vector<double> channel_map(const Image& test, const Image& reference, int c
     bb[i] = b[i] * b[i];
     ab[i] = a[i] * b[i];
   }
-  const std::vector<double> mu_a = blur(a, w, h, k), mu_b = blur(b, w, h, k);
-  const std::vector<double> e_aa = blur(aa, w, h, k), e_bb = blur(bb, w, h, k),
-                            e_ab = blur(ab, w, h, k);
+  separable_convolve(a, w, h, k, k, FilterBorder::reflect101, mu_a);
+  separable_convolve(b, w, h, k, k, FilterBorder::reflect101, mu_b);
+  separable_convolve(aa, w, h, k, k, FilterBorder::reflect101, e_aa);
+  separable_convolve(bb, w, h, k, k, FilterBorder::reflect101, e_bb);
+  separable_convolve(ab, w, h, k, k, FilterBorder::reflect101, e_ab);
   std::vector<double> map(n);
   for (size_t i = 0; i < n; ++i) {
     const double var_a = e_aa[i] - mu_a[i] * mu_a[i];

@@ -3,6 +3,7 @@ svgf_add_tests(svgf_core_tests
   SOURCES det_math_test.cpp svgf_cpu_rows_test.cpp svgf_cpu_reproject_rows_test.cpp
           wavelet_cpu_rows_test.cpp jbf_cpu_rows_test.cpp test_device_test.cpp
           metrics_lighting_change_test.cpp metrics_stability_test.cpp
+          metrics_filters_test.cpp
   LIBS svgf_cpu svgf_io svgf_metrics)
 # Every method's stages, each test body on the CPU, CUDA exact and (where fast mode has its
 # own arithmetic for the stage) CUDA fast.
