@@ -11,6 +11,10 @@
 #include <string>
 #include <vector>
 
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
+
 #include "app/method_options.h"
 #include "cli/command_line.h"
 #include "bench/baselines.h"
@@ -355,6 +359,12 @@ void add_stability(CLI::App& bench, const std::string& command, int& status) {
 }  // namespace
 
 int main(int argc, char** argv) {
+#ifdef __GLIBC__
+  // Per-frame planes (~1 MB each at 640x360) would otherwise be mmap'ed and page-faulted anew
+  // every frame; keep them on the heap and keep freed memory.
+  mallopt(M_MMAP_THRESHOLD, 256 << 20);
+  mallopt(M_TRIM_THRESHOLD, 1 << 30);
+#endif
   CLI::App bench("svgf-bench: the benchmark binary (docs/benchmarks.md). Without a subcommand the "
                  "options are run's: svgf-bench --size 64x64 is svgf-bench run --size 64x64.",
                  "svgf-bench");
