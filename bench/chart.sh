@@ -40,11 +40,16 @@ elif [ -n "$cpu_size$gpu_size" ]; then
 fi
 if [ -n "$quality" ]; then
   # The set's parameters, from its first scene (svgf-fixtures eval renders them all alike).
-  set_desc=$(jq -r '.set.scenes | "\(length) scenes, \(.[0].width)x\(.[0].height), \(.[0].frames) frames, \(.[0].reference_spp)-spp references"' "$quality")
-  quality_on="the evaluation set ($set_desc)"
-  subtitle+="; quality on $quality_on, CPU exact = CUDA exact"
+  set_desc=$(jq -r '.set.scenes | "\(.[0].width)x\(.[0].height), \(.[0].frames) frames, \(.[0].reference_spp)-spp references"' "$quality")
+  clean=$(jq -r '.clean_scenes | length' "$quality")
+  # The quality axis is the clean scenes' mean, PSNR with the references' noise taken out
+  # (bench/eval_quality.h); a scene's error curves are its own, corrected where it is clean.
+  quality_on="the $clean clean scenes of the evaluation set ($set_desc)"
+  errors_on="the evaluation set ($set_desc; PSNR with the reference noise taken out on clean scenes)"
+  subtitle+="; PSNR against the true image (reference noise taken out); CPU exact = CUDA exact"
 else
   quality_on="the fixture scenes"
+  errors_on=$quality_on
   subtitle+="; quality on the fixtures"
 fi
 
@@ -54,7 +59,7 @@ for metric in psnr flip; do
 done
 while read -r scene; do
   [ -n "$scene" ] || continue
-  gnuplot -e "data='$data'; scene='$scene'; out='$out/errors_$scene.png'; quality_on='$quality_on'" "$here/chart/errors.gp"
+  gnuplot -e "data='$data'; scene='$scene'; out='$out/errors_$scene.png'; quality_on='$errors_on'" "$here/chart/errors.gp"
 done < "$data/scenes.txt"
 gnuplot -e "data='$data'; out_pixels='$out/scaling_pixels.png'; out_iterations='$out/scaling_iterations.png'" \
   "$here/chart/scaling.gp"

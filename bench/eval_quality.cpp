@@ -65,8 +65,8 @@ SceneNoise scene_noise(const fs::path& dir, int frames) {
   if (static_cast<int>(n.mse.size()) != frames || !std::isfinite(n.mean_mse)) {
     n.why = "no reference noise in its eval.json for every frame";
   } else if (n.clamped_share > kMaxClampedShare) {
-    n.why = fmt("%.0f%% of its reference noise estimate is at the clamp", 100 * n.clamped_share) +
-            fmt(" (over %.0f%%: the estimate is low)", 100 * kMaxClampedShare);
+    n.why = fmt("%.0f%% of its reference noise estimate is at PSNR's clamp", 100 * n.clamped_share) +
+            fmt(", over %.0f%%, where the estimate is low", 100 * kMaxClampedShare);
   } else {
     n.clean = true;
   }

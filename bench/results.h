@@ -11,10 +11,11 @@ namespace svgf::bench {
 
 using json = nlohmann::json;
 
-// Keys of the default configurations, which the per-scene curves and tables single out.
-inline const char* const kDefaultCpu = "svgf cpu exact it4 tap1";
-inline const char* const kDefaultExact = "svgf cuda exact it4 tap1";
-inline const char* const kDefaultFast = "svgf cuda fast it4 tap1";
+// Keys of the default configurations (SvgfParams' iterations and feedback tap, pinned by
+// tests/bench_methods_test.cpp), which the per-scene curves and tables single out.
+inline const char* const kDefaultCpu = "svgf cpu exact it4 tap-1";
+inline const char* const kDefaultExact = "svgf cuda exact it4 tap-1";
+inline const char* const kDefaultFast = "svgf cuda fast it4 tap-1";
 inline const char* const kWaveletCpu = "wavelet cpu exact it4 k5";
 inline const char* const kWaveletFast = "wavelet cuda fast it4 k5";
 inline const char* const kJbfCpu = "jbf cpu exact r16";

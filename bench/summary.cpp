@@ -299,8 +299,8 @@ void eval_set_means(std::ostringstream& md, const Results& r) {
   const json& left = q["left_out_scenes"];
   if (left.empty()) md << "none";
   for (size_t i = 0; i < left.size(); ++i)
-    md << (i ? ", " : "") << "`" << left[i]["scene"].get<std::string>() << "` ("
-       << left[i].value("why", "") << ")";
+    md << (i ? "; " : "") << "`" << left[i]["scene"].get<std::string>() << "`: "
+       << left[i].value("why", "");
   md << ".\n\n| configuration | PSNR dB, all (measured) | PSNR dB, clean (measured) | "
         "PSNR dB, clean (corrected) | FLIP, all | FLIP, clean |\n|---|---:|---:|---:|---:|---:|\n";
   for (const json& m : q["means"])
