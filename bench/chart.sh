@@ -57,6 +57,12 @@ for metric in psnr flip; do
   gnuplot -e "data='$data'; out='$out/quality_$metric.png'; metric='$metric'; subtitle='$subtitle'; quality_on='$quality_on'" \
     "$here/chart/quality.gp"
 done
+# Per-scene charts of scenes no longer in the results (a set without one) would be stale.
+for png in "$out"/errors_*.png; do
+  [ -e "$png" ] || continue
+  scene=$(basename "$png" .png); scene=${scene#errors_}
+  grep -qxF "$scene" "$data/scenes.txt" || rm -f "$png" "$data/errors_${scene}_"*.dat
+done
 while read -r scene; do
   [ -n "$scene" ] || continue
   gnuplot -e "data='$data'; scene='$scene'; out='$out/errors_$scene.png'; quality_on='$errors_on'" "$here/chart/errors.gp"
