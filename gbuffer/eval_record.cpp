@@ -117,6 +117,7 @@ std::optional<EvalRecord> read_eval_record(const std::string& dir) {
     r.reference_noise_mse = read_per_frame(j, "reference_noise_mse", r.frames);
     r.reference_noise_se = read_per_frame(j, "reference_noise_se", r.frames);
     r.reference_noise_clamped_share = read_per_frame(j, "reference_noise_clamped_share", r.frames);
+    r.records_reference_noise = version >= 2;
     return r;
   } catch (const std::exception& e) {
     throw std::runtime_error(path + ": unreadable: " + e.what());

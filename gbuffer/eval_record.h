@@ -19,6 +19,8 @@ struct EvalRecord {
   // Per frame, the reference's noise (renderer.h, ReferenceNoise): NaN where none is recorded
   // (not written yet, a reference under 2 samples, or a record from before it was kept).
   std::vector<double> reference_noise_mse, reference_noise_se, reference_noise_clamped_share;
+  // False for a record from before the noise was kept (format 1): its frames have none.
+  bool records_reference_noise = true;
 
   bool complete() const;
 };

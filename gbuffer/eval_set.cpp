@@ -203,8 +203,7 @@ EvalPlan plan_eval_sequence(const EvalSequence& seq, const EvalParams& p) {
       problem = "missing";
     else if (exists && io::sha256_file(path) != recorded)
       problem = "its SHA-256 differs from eval.json's";
-    else if (exists && p.reference_spp >= 2 &&
-             !std::isfinite(cached->reference_noise_mse[static_cast<size_t>(k)]))
+    else if (exists && p.reference_spp >= 2 && !cached->records_reference_noise)
       problem = "no reference noise in eval.json (rendered before it was recorded)";
     if (exists && problem.empty()) {
       ++plan.kept;
