@@ -15,6 +15,7 @@
 #include "methods/gaussian/params.h"
 #include "methods/jbf/params.h"
 #include "methods/svgf/atrous.h"
+#include "methods/svgf/gradient.h"
 #include "methods/svgf/params.h"
 #include "methods/svgf/reproject.h"
 #include "methods/svgf/variance.h"
@@ -38,6 +39,7 @@ struct CpuVariant {
   void (*atrous_rows)(const AtrousKernel&, int, int);
   void (*variance_rows)(const VarianceKernel&, int, int);
   void (*reproject_rows)(const ReprojectKernel&, int, int);
+  void (*gradient_atrous_rows)(const GradientAtrousKernel&, int, int);
   void (*wavelet_rows)(const WaveletExactIteration&, int, int);
   void (*jbf_rows)(const JbfPass<ExactArith>&, int, int);
 };

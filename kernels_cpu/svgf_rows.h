@@ -7,9 +7,11 @@
 // same tap order: the result is bitwise the per-pixel kernel's (tests/svgf_cpu_rows_test.cpp
 // checks it), and so the GPU's. The CPU engine picks them through PixelDriver.
 // The reprojection's row driver (svgf_reproject_rows.cpp) runs its per-pixel kernel's history
-// reads (bilinear taps, 3x3 fallback) and its blend as vector code over a row.
+// reads (bilinear taps, 3x3 fallback) and its blend as vector code over a row; A-SVGF's
+// gradient a-trous (svgf_gradient_rows.cpp) its interior strata.
 #include "kernels_cpu/cpu_engine.h"
 #include "methods/svgf/atrous.h"
+#include "methods/svgf/gradient.h"
 #include "methods/svgf/reproject.h"
 #include "methods/svgf/variance.h"
 
@@ -18,10 +20,19 @@ namespace svgf::cpu {
 void run_atrous_rows(const AtrousKernel& kernel, int width, int height);
 void run_variance_rows(const VarianceKernel& kernel, int width, int height);
 void run_reproject_rows(const ReprojectKernel& kernel, int width, int height);
+void run_gradient_atrous_rows(const GradientAtrousKernel& kernel, int strata_width,
+                              int strata_height);
 
 template <>
 struct PixelDriver<ReprojectKernel> {
   static void run(const ReprojectKernel& k, int w, int h) { run_reproject_rows(k, w, h); }
+};
+
+template <>
+struct PixelDriver<GradientAtrousKernel> {
+  static void run(const GradientAtrousKernel& k, int w, int h) {
+    run_gradient_atrous_rows(k, w, h);
+  }
 };
 
 // Exact mode's kernels with any normal-weight power (the rows pick theirs from phi_normal).

@@ -1,0 +1,120 @@
+// A-SVGF's gradient a-trous row driver (kernels_cpu/svgf_gradient_rows.cpp) must give the
+// per-stratum kernel's bits exactly (the kernel is what the GPU runs), on every instruction-set
+// variant this CPU runs: strata without data, taps on other meshes, NaN / Inf / -0 in the
+// planes and guides, stratum images narrower or lower than the taps' reach, every step.
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include <catch2/catch.hpp>
+
+#include "kernels_cpu/cpu_variant.h"
+#include "kernels_cpu/parallel_for.h"
+#include "methods/svgf/gradient.h"
+#include "test_support.h"
+
+using namespace svgf;
+
+namespace {
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+// A frame's guides in patches of two meshes (a few strays of a third), holes and a few bad
+// values, and per stratum a random guide pixel inside the frame.
+struct Guides {
+  Frame frame;
+  Image offset;  // per stratum, 0 .. 8
+  Guides(int w, int h, uint32_t seed)
+      : frame(test::flat_frame(w, h)), offset(strata_along(w), strata_along(h), 1) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(0.f, 1.f);
+    test::fill_uniform(frame.depth_gradient, -0.05f, 0.05f, seed + 1);
+    for (int i = 0; i < w * h; ++i) {
+      const int x = i % w, y = i / w;
+      const bool near = (x / 7 + y / 5) % 3 == 0;
+      const float odd = u(rng);
+      frame.depth.plane(0)[i] = odd < 0.02f ? 0.f : (near ? 2.f + u(rng) * 0.05f : 5.f + u(rng));
+      frame.mesh_id[i] = odd > 0.97f ? 9u : (near ? 1u : 2u);
+      const float tilt = u(rng) * 0.6f - 0.3f, n = std::sqrt(1.f + tilt * tilt);
+      frame.normal.plane(0)[i] = tilt / n;
+      frame.normal.plane(2)[i] = 1.f / n;
+      if (odd > 0.02f && odd < 0.025f) frame.depth.plane(0)[i] = kNaN;
+      if (odd > 0.03f && odd < 0.035f) frame.normal.plane(1)[i] = kNaN;
+    }
+    const int sw = offset.width();
+    for (int s = 0; s < sw * offset.height(); ++s) {
+      const int x0 = (s % sw) * kGradientStratum, y0 = (s / sw) * kGradientStratum;
+      const int k = static_cast<int>(u(rng) * 9.f) % 9;
+      const int dx = std::min(k % 3, w - 1 - x0), dy = std::min(k / 3, h - 1 - y0);
+      offset.plane(0)[s] = static_cast<float>(dy * kGradientStratum + dx);
+    }
+  }
+};
+
+// The filtered planes (delta, normalizer, weight): a third of the strata without data, and a
+// few of each odd value in delta and normalizer.
+Image random_planes(int sw, int sh, uint32_t seed) {
+  Image in(sw, sh, 3);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  const float odd_values[] = {kNaN, kInf, -kInf, -0.f, 0.f};
+  for (int s = 0; s < sw * sh; ++s) {
+    in.plane(0)[s] = u(rng) * 4.f - 2.f;
+    in.plane(1)[s] = u(rng) * 3.f;
+    in.plane(2)[s] = u(rng) < 0.33f ? 0.f : 1.f;
+    const float odd = u(rng);
+    if (odd < 0.05f) in.plane(static_cast<int>(odd * 40.f) % 2)[s] = odd_values[s % 5];
+    if (odd > 0.98f) in.plane(2)[s] = kNaN;  // not > 0: no data
+  }
+  return in;
+}
+
+GradientAtrousKernel kernel_for(const Guides& g, const Image& in, Image& out, int step) {
+  GradientAtrousKernel k;
+  k.guides = g.frame.guides();
+  k.at = StratumGuides{g.frame.width(), g.offset.width(), g.offset.plane(0)};
+  k.strata_height = g.offset.height();
+  k.in = GradientPlanes<const float>(in.plane(0), in.plane(1), in.plane(2));
+  k.out = GradientPlanes<float>(out.plane(0), out.plane(1), out.plane(2));
+  k.step = step;
+  return k;
+}
+
+}  // namespace
+
+TEST_CASE("cpu rows: gradient a-trous rows equal the per-stratum kernel bitwise", "[cpu_rows]") {
+  // In pixels: strata images from 45 x 17 down to narrower and lower than the taps' reach.
+  const int sizes[][2] = {{133, 49}, {400, 130}, {50, 50}, {7, 40}, {40, 7}, {1, 1}, {20, 14}};
+  uint32_t seed = 700;
+  int variants = 0;
+  for (const auto& size : sizes) {
+    const Guides g(size[0], size[1], ++seed);
+    const int sw = g.offset.width(), sh = g.offset.height();
+    const Image in = random_planes(sw, sh, ++seed);
+    for (int step : {1, 2, 4, 8, 16})
+      for (float phi_normal : {128.f, 100.f})   // a power of two (compile-time) and not
+        for (float phi_depth : {1.f, 0.f}) {    // 0: no depth term
+          const std::string what = std::to_string(sw) + "x" + std::to_string(sh) +
+                                   " strata, step " + std::to_string(step) + ", phi_normal " +
+                                   std::to_string(phi_normal) + ", phi_depth " +
+                                   std::to_string(phi_depth);
+          Image expected(sw, sh, 3, -1.f);
+          GradientAtrousKernel k = kernel_for(g, in, expected, step);
+          k.phi_normal = phi_normal;
+          k.phi_depth = phi_depth;
+          cpu::for_each_pixel(sw, sh, k);
+          variants = 0;
+          for (const cpu::CpuVariant* v : cpu::built_variants()) {
+            if (!cpu::runs_here(*v)) continue;
+            Image got(sw, sh, 3, -2.f);
+            GradientAtrousKernel r = k;
+            r.out = GradientPlanes<float>(got.plane(0), got.plane(1), got.plane(2));
+            v->gradient_atrous_rows(r, sw, sh);
+            test::require_identical(got, expected, what + " on " + v->name);
+            ++variants;
+          }
+          REQUIRE(variants > 0);
+        }
+  }
+}
