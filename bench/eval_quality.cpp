@@ -65,7 +65,8 @@ SceneNoise scene_noise(const fs::path& dir, int frames) {
   if (static_cast<int>(n.mse.size()) != frames || !std::isfinite(n.mean_mse)) {
     n.why = "no reference noise in its eval.json for every frame";
   } else if (n.clamped_share > kMaxClampedShare) {
-    n.why = fmt("%.0f%% of its reference noise estimate is at PSNR's clamp", 100 * n.clamped_share) +
+    n.why = fmt("%.0f%% of its reference noise estimate is at PSNR's clamp",
+                100 * n.clamped_share) +
             fmt(", over %.0f%%, where the estimate is low", 100 * kMaxClampedShare);
   } else {
     n.clean = true;
@@ -192,7 +193,8 @@ int run_eval_quality(const EvalQualityOptions& o) {
       if (errors[c][i].empty()) errors[c][i] = "failed";
     }
     // Progress on stderr as pairs finish (the results are printed in order at the end).
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    const double s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     std::fprintf(stderr, "svgf-bench quality: [%zu/%zu] %.0f s %s on %s\n", ++done, pairs, s,
                  configs[c].key().c_str(), sets[i].scene.c_str());
   };

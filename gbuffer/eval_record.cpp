@@ -58,7 +58,8 @@ bool EvalRecord::complete() const {
 SequenceNoise sequence_reference_noise(const EvalRecord& r) {
   const SequenceNoise none{std::nan(""), std::nan("")};
   const size_t n = static_cast<size_t>(r.frames);
-  if (r.frames < 1 || r.reference_noise_mse.size() != n || r.reference_noise_clamped_share.size() != n)
+  if (r.frames < 1 || r.reference_noise_mse.size() != n ||
+      r.reference_noise_clamped_share.size() != n)
     return none;
   double sum = 0, clamped = 0;
   for (size_t k = 0; k < n; ++k) {

@@ -93,7 +93,8 @@ TEST_CASE("quality on the evaluation set: every chart configuration, clean means
   const json chart_entry = r.quality(key).at("cornell-moving");
   CHECK(chart_entry["mean"]["psnr"] == clean["clean"]["psnr"]);
   CHECK(chart_entry["mean"]["psnr_measured"] == clean["clean"]["psnr_measured"]);
-  CHECK(chart_entry["mean"]["psnr"].get<double>() > chart_entry["mean"]["psnr_measured"].get<double>());
+  CHECK(chart_entry["mean"]["psnr"].get<double>() >
+        chart_entry["mean"]["psnr_measured"].get<double>());
   for (const json& e : doc["quality"])  // camera-pan's is the measured one
     if (e["key"] == key && e["scene"] == "camera-pan")
       CHECK(r.quality(key).at("camera-pan")["mean"]["psnr"] == e["mean"]["psnr"]);

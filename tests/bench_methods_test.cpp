@@ -140,12 +140,10 @@ TEST_CASE("keys are unique per configuration and name the kernel size", "[bench]
   CHECK(wavelet_config(Backend::Cpu, Mode::Exact, 5, 0).key() == kWaveletCpu);
   CHECK(wavelet_config(Backend::Cuda, Mode::Fast, 5, 0).key() == kWaveletFast);
   const SvgfParams defaults;
-  CHECK(svgf_config(Backend::Cpu, Mode::Exact, defaults.iterations, defaults.feedback_tap, 0).key() ==
-        kDefaultCpu);
-  CHECK(svgf_config(Backend::Cuda, Mode::Exact, defaults.iterations, defaults.feedback_tap, 0).key() ==
-        kDefaultExact);
-  CHECK(svgf_config(Backend::Cuda, Mode::Fast, defaults.iterations, defaults.feedback_tap, 0).key() ==
-        kDefaultFast);
+  const int it = defaults.iterations, tap = defaults.feedback_tap;
+  CHECK(svgf_config(Backend::Cpu, Mode::Exact, it, tap, 0).key() == kDefaultCpu);
+  CHECK(svgf_config(Backend::Cuda, Mode::Exact, it, tap, 0).key() == kDefaultExact);
+  CHECK(svgf_config(Backend::Cuda, Mode::Fast, it, tap, 0).key() == kDefaultFast);
   CHECK_THROWS_WITH(run_config("bilateral"), Catch::Contains("cv-bilateral"));
 }
 

@@ -300,7 +300,8 @@ TEST_CASE("a reference's noise is estimated from its halves, as two seeds measur
   // The estimate changes nothing rendered, and any thread count gives the same one.
   const Frame plain = renderer().render(scene, 0, s);
   for (int c = 0; c < 3; ++c)
-    CHECK(std::equal(plain.reference.plane(c), plain.reference.plane(c) + plain.reference.pixel_count(),
+    CHECK(std::equal(plain.reference.plane(c),
+                     plain.reference.plane(c) + plain.reference.pixel_count(),
                      a.reference.plane(c)));
   ReferenceNoise one_thread;
   tbb::task_arena(1).execute([&] { renderer().render(scene, 0, s, nullptr, &one_thread); });
