@@ -34,9 +34,6 @@ if [ ! -f "$set_dir/.rendered" ] && ! running render; then
 fi
 while [ ! -f "$set_dir/.rendered" ] && running render && [ "$(left)" -gt 15 ]; do sleep 3; done
 if [ -f "$set_dir/.rendered" ] && [ ! -f /tmp/svgf-eval-quality.json ] && ! running quality; then
-  # glibc's malloc keeps freed memory (a 640x360 plane is ~1 MB, mmap'ed and page-faulted anew
-  # on every frame otherwise: a quarter of the run's CPU time in the kernel).
-  GLIBC_TUNABLES=glibc.malloc.mmap_threshold=268435456:glibc.malloc.trim_threshold=1073741824 \
   setsid nohup "$run" svgf-bench quality --set "$set_dir" --out /tmp/svgf-eval-quality.json \
     >>/tmp/svgf-eval-quality.log 2>&1 </dev/null &
   echo $! >/tmp/svgf-eval-quality.pid

@@ -16,12 +16,12 @@
 
 #include "bench/host_probe.h"
 #include "bench/suites.h"
-#ifdef SVGF_BENCH_HAVE_GBUFFER
-#include "gbuffer/eval_record.h"
-#endif
 #include "bench/workload.h"
 #include "io/atomic_file.h"
 #include "io/sequence.h"
+#ifdef SVGF_BENCH_HAVE_GBUFFER
+#include "gbuffer/eval_record.h"
+#endif
 
 namespace fs = std::filesystem;
 
@@ -50,7 +50,7 @@ SceneNoise scene_noise(const fs::path& dir, int frames) {
 #ifdef SVGF_BENCH_HAVE_GBUFFER
   try {
     if (const auto r = gbuffer::read_eval_record(dir.string())) {
-      n.mse = r->reference_noise_mse;
+      for (const gbuffer::ReferenceNoise& f : r->reference_noise) n.mse.push_back(f.mse);
       const gbuffer::SequenceNoise s = gbuffer::sequence_reference_noise(*r);
       n.mean_mse = s.mse;
       n.clamped_share = s.clamped_share;

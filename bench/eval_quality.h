@@ -14,13 +14,13 @@ struct EvalQualityOptions {
   std::string command;
 };
 
-// The references' own noise (gbuffer/renderer.h, ReferenceNoise): each frame's estimate, from
+// The references' own noise (gbuffer/reference_noise.h, ReferenceNoise): each frame's estimate, from
 // the reference's two halves, is in the sequence's eval.json. A method's MSE against the
 // reference is its MSE against the true image plus that noise, so the file's `psnr_corrected`
 // is 10 log10(1 / (MSE - noise)) per frame: the PSNR against the true image, which the charts
 // take. A scene counts in the "clean" means (and is corrected) when every frame has an estimate
 // and at most kMaxClampedShare of it comes from values at PSNR's clamp, where the estimate is
-// biased low (renderer.h); the others are named with the reason, measured PSNR only.
+// biased low (reference_noise.h); the others are named with the reason, measured PSNR only.
 inline constexpr double kMaxClampedShare = 0.05;
 
 int run_eval_quality(const EvalQualityOptions& o);

@@ -37,10 +37,11 @@ std::vector<double> read_per_frame(const nlohmann::json& j, const char* key, int
   return v;
 }
 
-nlohmann::ordered_json per_frame_json(const std::vector<double>& v, int frames) {
+nlohmann::ordered_json per_frame_json(const EvalRecord& r, double ReferenceNoise::*field) {
   nlohmann::ordered_json a = nlohmann::ordered_json::array();
-  for (int k = 0; k < frames; ++k) {
-    const double x = k < static_cast<int>(v.size()) ? v[static_cast<size_t>(k)] : std::nan("");
+  for (int k = 0; k < r.frames; ++k) {
+    const size_t i = static_cast<size_t>(k);
+    const double x = i < r.reference_noise.size() ? r.reference_noise[i].*field : std::nan("");
     a.push_back(std::isfinite(x) ? nlohmann::ordered_json(x) : nlohmann::ordered_json(nullptr));
   }
   return a;
@@ -58,12 +59,10 @@ bool EvalRecord::complete() const {
 SequenceNoise sequence_reference_noise(const EvalRecord& r) {
   const SequenceNoise none{std::nan(""), std::nan("")};
   const size_t n = static_cast<size_t>(r.frames);
-  if (r.frames < 1 || r.reference_noise_mse.size() != n ||
-      r.reference_noise_clamped_share.size() != n)
-    return none;
+  if (r.frames < 1 || r.reference_noise.size() != n) return none;
   double sum = 0, clamped = 0;
-  for (size_t k = 0; k < n; ++k) {
-    const double v = r.reference_noise_mse[k], share = r.reference_noise_clamped_share[k];
+  for (const ReferenceNoise& f : r.reference_noise) {
+    const double v = f.mse, share = f.clamped_share;
     if (!std::isfinite(v) || !std::isfinite(share)) return none;
     sum += v;
     clamped += v * share;
@@ -115,9 +114,10 @@ std::optional<EvalRecord> read_eval_record(const std::string& dir) {
     r.sha256 = j.at("sha256").get<std::vector<std::string>>();
     if (r.frames < 1 || static_cast<int>(r.sha256.size()) != r.frames)
       throw std::runtime_error("'sha256' does not list one entry per frame");
-    r.reference_noise_mse = read_per_frame(j, "reference_noise_mse", r.frames);
-    r.reference_noise_se = read_per_frame(j, "reference_noise_se", r.frames);
-    r.reference_noise_clamped_share = read_per_frame(j, "reference_noise_clamped_share", r.frames);
+    const std::vector<double> mse = read_per_frame(j, "reference_noise_mse", r.frames),
+                              se = read_per_frame(j, "reference_noise_se", r.frames),
+                              share = read_per_frame(j, "reference_noise_clamped_share", r.frames);
+    for (size_t k = 0; k < mse.size(); ++k) r.reference_noise.push_back({mse[k], se[k], share[k]});
     r.records_reference_noise = version >= 2;
     return r;
   } catch (const std::exception& e) {
@@ -140,9 +140,10 @@ void write_eval_record(const std::string& dir, const EvalRecord& r) {
   j["split"] = r.split;
   j["gradients"] = r.gradients;
   j["sha256"] = r.sha256;  // "" for a frame not written yet
-  j["reference_noise_mse"] = per_frame_json(r.reference_noise_mse, r.frames);  // null: none
-  j["reference_noise_se"] = per_frame_json(r.reference_noise_se, r.frames);
-  j["reference_noise_clamped_share"] = per_frame_json(r.reference_noise_clamped_share, r.frames);
+  // One array per field, null where none is recorded.
+  j["reference_noise_mse"] = per_frame_json(r, &ReferenceNoise::mse);
+  j["reference_noise_se"] = per_frame_json(r, &ReferenceNoise::standard_error);
+  j["reference_noise_clamped_share"] = per_frame_json(r, &ReferenceNoise::clamped_share);
   io::write_file_atomically(record_path(dir), j.dump(2) + "\n");
 }
 

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "gbuffer/reference_noise.h"
+
 namespace svgf::gbuffer {
 
 struct EvalRecord {
@@ -16,9 +18,9 @@ struct EvalRecord {
   uint64_t seed = 0;
   bool split = false, gradients = false;
   std::vector<std::string> sha256;  // per frame; "" where none is written yet
-  // Per frame, the reference's noise (renderer.h, ReferenceNoise): NaN where none is recorded
-  // (not written yet, a reference under 2 samples, or a record from before it was kept).
-  std::vector<double> reference_noise_mse, reference_noise_se, reference_noise_clamped_share;
+  // Per frame, the reference's noise: NaN fields where none is recorded (not written yet, a
+  // reference under 2 samples, or a record from before it was kept).
+  std::vector<ReferenceNoise> reference_noise;
   // False for a record from before the noise was kept (format 1): its frames have none.
   bool records_reference_noise = true;
 

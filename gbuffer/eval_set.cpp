@@ -5,7 +5,6 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -38,9 +37,7 @@ EvalRecord wanted_record(const EvalSequence& seq, const EvalParams& p) {
   r.split = seq.settings.split;
   r.gradients = seq.settings.gradients;
   r.sha256.assign(static_cast<size_t>(p.frames), "");
-  r.reference_noise_mse.assign(static_cast<size_t>(p.frames), std::nan(""));
-  r.reference_noise_se.assign(static_cast<size_t>(p.frames), std::nan(""));
-  r.reference_noise_clamped_share.assign(static_cast<size_t>(p.frames), std::nan(""));
+  r.reference_noise.assign(static_cast<size_t>(p.frames), ReferenceNoise{});
   return r;
 }
 
@@ -231,29 +228,22 @@ void render_eval_sequence(const Renderer& renderer, const EvalSequence& seq, con
     if (!cached || !parameter_differences(*cached, record).empty())
       throw std::runtime_error(seq.dir + ": eval.json changed since it was read; run again");
     record.sha256 = cached->sha256;
-    record.reference_noise_mse = cached->reference_noise_mse;
-    record.reference_noise_se = cached->reference_noise_se;
-    record.reference_noise_clamped_share = cached->reference_noise_clamped_share;
+    record.reference_noise = cached->reference_noise;
   }
   if (!plan.to_render.empty()) {
     fs::remove(fs::path(seq.dir) / "manifest.json");  // the sequence is incomplete until the end
     for (int k : plan.to_render) {
       record.sha256[static_cast<size_t>(k)].clear();
-      record.reference_noise_mse[static_cast<size_t>(k)] = std::nan("");
-      record.reference_noise_se[static_cast<size_t>(k)] = std::nan("");
-      record.reference_noise_clamped_share[static_cast<size_t>(k)] = std::nan("");
+      record.reference_noise[static_cast<size_t>(k)] = ReferenceNoise{};
     }
     write_eval_record(seq.dir, record);
   }
   for (int k : plan.to_render) {
-    ReferenceNoise noise;
+    ReferenceNoise& noise = record.reference_noise[static_cast<size_t>(k)];
     const Frame f = renderer.render(seq.scene, k, seq.settings, counters, &noise);
     const std::string path = frame_path(seq, k);
     io::write_frame(path, f, fixture_storage());  // a temporary name, then renamed
     record.sha256[static_cast<size_t>(k)] = io::sha256_file(path);
-    record.reference_noise_mse[static_cast<size_t>(k)] = noise.mse;
-    record.reference_noise_se[static_cast<size_t>(k)] = noise.standard_error;
-    record.reference_noise_clamped_share[static_cast<size_t>(k)] = noise.clamped_share;
     write_eval_record(seq.dir, record);
     if (on_frame) on_frame(k);
   }

@@ -83,7 +83,7 @@ PixelRadiance estimate(const FrameScene& scene, const RenderSettings& settings, 
           make_vec3(mean[6], mean[7], mean[8])};
 }
 
-// One pixel's part of ReferenceNoise (renderer.h): (clamp(a) - clamp(b))^2 per channel, scaled
+// One pixel's part of ReferenceNoise (reference_noise.h): (clamp(a) - clamp(b))^2 per channel, scaled
 // to the variance of the whole reference; its sum and sum of squares.
 struct NoiseSums {
   double sum = 0, squares = 0, at_clamp = 0;
@@ -125,7 +125,7 @@ Frame Renderer::render(const SceneDesc& desc, int frame, const RenderSettings& s
     f.indirect = Image(w, h, 3);
   }
   f.camera = scene.camera().matrices();
-  // The reference's noise (renderer.h): summed per row, then over rows in order, so the estimate
+  // The reference's noise (reference_noise.h): summed per row, then over rows in order, so the estimate
   // does not depend on the thread count.
   const int n = settings.reference_spp, n1 = n / 2;
   const bool estimate_noise = noise != nullptr && n >= 2;

@@ -4,11 +4,11 @@
 // pixel, so the output is the same for any thread count or scheduling.
 #include <atomic>
 #include <cstdint>
-#include <limits>
 
 #include "core/frame.h"
 #include "gbuffer/frame_scene.h"
 #include "gbuffer/path_tracer.h"
+#include "gbuffer/reference_noise.h"
 #include "gbuffer/scene.h"
 
 namespace svgf::gbuffer {
@@ -36,25 +36,6 @@ struct RenderCounters {
   std::atomic<uint64_t> rays{0};
   std::atomic<uint64_t> rows{0};
   std::atomic<bool> cancel{false};  // set from outside: render() stops and throws
-};
-
-// How far one frame's reference is from the true image, as the mean squared error PSNR measures
-// (values clamped to [0, 1], mean over pixels and RGB), estimated from the reference's own
-// samples: its two halves, samples [0, n1) and [n1, n) with n1 = n/2, are independent estimates
-// a and b, so E[(a - b)^2] n1 (n - n1) / n^2 is the variance of their mean, the reference
-// (exact where the clamp does not act). A method's MSE against the reference is its MSE against
-// the true image plus this (independent noise), so quality reports subtract it
-// (bench/eval_quality.cpp). NaN without a reference of at least 2 samples.
-// Where a half is above 1 the clamp cuts its difference and the estimate comes out low (against
-// two references rendered with two seeds, `svgf-fixtures reference-noise`: within 0.1 dB where
-// under 3% of the estimate comes from such values, 0.65 and 1.5 dB low at 20% and 32%), so
-// `clamped_share` says how much of it does.
-struct ReferenceNoise {
-  double mse = std::numeric_limits<double>::quiet_NaN();
-  // Standard error of `mse` from the spread of the per-value estimates (pixels independent).
-  double standard_error = std::numeric_limits<double>::quiet_NaN();
-  // The part of `mse` from channel values where a half is above 1, over `mse` (0 to 1).
-  double clamped_share = std::numeric_limits<double>::quiet_NaN();
 };
 
 class Renderer {

@@ -24,7 +24,7 @@ namespace svgf::gbuffer::tool {
 namespace {
 
 // ", reference noise 40.84 dB (0.0% of it at the clamp)" from the folder's eval.json
-// (renderer.h, ReferenceNoise), or "".
+// (reference_noise.h), or "".
 std::string reference_noise_phrase(const std::string& dir) {
   const std::optional<EvalRecord> r = read_eval_record(dir);
   const SequenceNoise noise = r ? sequence_reference_noise(*r) : SequenceNoise{0, 0};

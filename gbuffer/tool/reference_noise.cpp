@@ -2,7 +2,7 @@
 // frame's reference with two seeds and prints the PSNR between them (metrics::psnr, the PSNR
 // every report uses); their noise is independent, so one reference against the true image is
 // 10 log10(2) = 3.01 dB better. Beside it, the first reference's estimate from its own two
-// halves (renderer.h, ReferenceNoise; what eval.json records per frame), with its standard
+// halves (reference_noise.h; what eval.json records per frame), with its standard
 // error in dB: the two should agree.
 #include <tbb/global_control.h>
 
@@ -77,7 +77,7 @@ int run_reference_noise(const NoiseArgs& a) {
     RenderSettings other = s.settings;
     other.seed = s.settings.seed + 1;
     RenderCounters counters;  // cancel on Ctrl-C
-    ReferenceNoise halves;  // A's own estimate from its two halves (renderer.h)
+    ReferenceNoise halves;  // A's own estimate from its two halves (reference_noise.h)
     const Frame fa = renderer.render(s.scene, a.frame, s.settings, &counters, &halves);
     if (interrupted()) return 130;
     const Frame fb = renderer.render(s.scene, a.frame, other, &counters);
