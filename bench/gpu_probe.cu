@@ -3,6 +3,9 @@
 #include <cuda_runtime.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -148,6 +151,92 @@ size_t device_used_bytes() {
     return 0;
   }
   return total - free_bytes;
+}
+
+namespace {
+
+// One frame's channels in device memory, planar (the frame's own layout), and its views.
+class DeviceCopy {
+ public:
+  explicit DeviceCopy(const Frame& f) : frame_(f.width(), f.height()) {
+    frame_.index = f.index;
+    frame_.color = put(f.color.data(), f.color);
+    frame_.albedo = put(f.albedo.data(), f.albedo);
+    frame_.normal = put(f.normal.data(), f.normal);
+    frame_.depth = put(f.depth.data(), f.depth);
+    frame_.depth_gradient = put(f.depth_gradient.data(), f.depth_gradient);
+    frame_.motion = put(f.motion.data(), f.motion);
+    std::vector<float> ids(f.mesh_id.size());
+    std::memcpy(ids.data(), f.mesh_id.data(), ids.size() * sizeof(float));
+    frame_.mesh_id = put(ids, f.depth);
+    if (!f.emission.empty()) frame_.emission = put(f.emission.data(), f.emission);
+    if (!f.position.empty()) frame_.position = put(f.position.data(), f.position);
+    if (!f.direct.empty()) frame_.direct = put(f.direct.data(), f.direct);
+    if (!f.indirect.empty()) frame_.indirect = put(f.indirect.data(), f.indirect);
+    // The host path reads the mask to see whether the frame has samples; a device frame
+    // says so by its view (core/device_frame.h).
+    bool samples = false;
+    if (!f.gradient.empty())
+      for (size_t i = 0; i < f.gradient.pixel_count() && !samples; ++i)
+        samples = f.gradient.plane(2)[i] > 0.5f;
+    if (samples) frame_.gradient = put(f.gradient.data(), f.gradient);
+  }
+  ~DeviceCopy() {
+    for (void* p : buffers_) cudaFree(p);
+  }
+  DeviceCopy(const DeviceCopy&) = delete;
+  DeviceCopy& operator=(const DeviceCopy&) = delete;
+  const DeviceFrame& frame() const { return frame_; }
+
+ private:
+  DeviceImageView put(const std::vector<float>& values, const Image& shape) {
+    void* p = nullptr;
+    check(cudaMalloc(&p, values.size() * sizeof(float)), "cudaMalloc of a device-path frame");
+    buffers_.push_back(p);
+    check(cudaMemcpy(p, values.data(), values.size() * sizeof(float), cudaMemcpyHostToDevice),
+          "upload of a device-path frame");
+    return DeviceImageView::planar(p, shape.width(), shape.height());
+  }
+
+  DeviceFrame frame_;
+  std::vector<void*> buffers_;
+};
+
+double ms_between(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+}  // namespace
+
+DevicePathTimes time_device_path(Denoiser& denoiser, const std::vector<Frame>& frames, int warmup,
+                                 int count, const std::function<void(int, int)>& before) {
+  DevicePathTimes t;
+  if (frames.empty()) return t;
+  std::vector<std::unique_ptr<DeviceCopy>> copies;
+  for (const Frame& f : frames) copies.push_back(std::make_unique<DeviceCopy>(f));
+  const int w = frames.front().width(), h = frames.front().height();
+  void* out = nullptr;
+  check(cudaMalloc(&out, 3 * sizeof(float) * w * h), "cudaMalloc of the device-path output");
+  cudaStream_t stream = nullptr;
+  check(cudaStreamCreateWithFlags(&stream, cudaStreamNonBlocking), "cudaStreamCreate");
+  const DeviceOutputView view = DeviceOutputView::planar(out, w, h);
+  const int n = static_cast<int>(frames.size());
+  for (int m = 0; m < warmup + count; ++m) {
+    const int k = m % n;
+    before(m, k);
+    const auto t0 = std::chrono::steady_clock::now();
+    denoiser.denoise_device(copies[static_cast<size_t>(k)]->frame(), view, stream);
+    const auto t1 = std::chrono::steady_clock::now();
+    check(cudaStreamSynchronize(stream), "cudaStreamSynchronize after a device-path frame");
+    const auto t2 = std::chrono::steady_clock::now();
+    if (m < warmup) continue;
+    t.call_ms.push_back(ms_between(t0, t1));
+    t.done_ms.push_back(ms_between(t0, t2));
+  }
+  (void)denoiser.last_report();  // raises any fault of the last frame
+  check(cudaStreamDestroy(stream), "cudaStreamDestroy");
+  check(cudaFree(out), "cudaFree");
+  return t;
 }
 
 }  // namespace svgf::bench

@@ -3,7 +3,12 @@
 // analysis divides by (device-to-device copy bandwidth, FP32 instruction rate), measured.
 // Plain C++ header; without CUDA in the build every function reports "no device".
 #include <cstddef>
+#include <functional>
 #include <string>
+#include <vector>
+
+#include "core/denoiser.h"
+#include "core/frame.h"
 
 namespace svgf::bench {
 
@@ -32,5 +37,17 @@ DeviceInfo query_device();
 void measure_ceilings(DeviceInfo& info);
 // Device memory in use on the current device (total - free), 0 without a device.
 size_t device_used_bytes();
+
+// The device path (Denoiser::denoise_device), as a renderer whose G-buffer is on the GPU uses
+// it: the distinct frames copied once into device memory (planar), then `warmup` + `count`
+// frames denoised where they lie, on a stream of the bench's, `before(m, k)` called before
+// frame m (frame k of the set; the runner's resets). Per timed frame, host clock: `call_ms`,
+// the denoise_device call (enqueueing only), and `done_ms`, from the call to the stream
+// synchronized (the frame's work done). Empty without a device.
+struct DevicePathTimes {
+  std::vector<double> call_ms, done_ms;
+};
+DevicePathTimes time_device_path(Denoiser& denoiser, const std::vector<Frame>& frames, int warmup,
+                                 int count, const std::function<void(int, int)>& before);
 
 }  // namespace svgf::bench

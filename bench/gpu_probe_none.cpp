@@ -10,5 +10,9 @@ DeviceInfo query_device() {
 }
 void measure_ceilings(DeviceInfo&) {}
 size_t device_used_bytes() { return 0; }
+DevicePathTimes time_device_path(Denoiser&, const std::vector<Frame>&, int, int,
+                                 const std::function<void(int, int)>&) {
+  return {};
+}
 
 }  // namespace svgf::bench

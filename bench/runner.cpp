@@ -122,6 +122,15 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
       filter_ms.push_back(wall);
     }
   }
+  // The device path after the host path, on the same denoiser (its history goes on): what a
+  // renderer whose G-buffer is already on the GPU pays, from its call to the frame done.
+  DevicePathTimes device_path;
+  if (cuda && project)
+    device_path = time_device_path(*den, fs.frames, std::min(t.warmup, 3), timed,
+                                   [&](int m, int k) {
+                                     if (fs.is_cut(k) || (k == 0 && fs.source == "fixture"))
+                                       if (m > 0) den->reset();
+                                   });
   const auto load_after = load_average();
   const double others = others_share(usage_before, cpu_usage());
 
@@ -139,6 +148,10 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
   j["frames"] = timed;
   const OrderStats filter = order_stats(filter_ms), wall = order_stats(wall_ms);
   j["frame_ms"] = {{"filter", summary_json(filter)}, {"wall", summary_json(wall)}};
+  if (!device_path.done_ms.empty()) {
+    j["frame_ms"]["device_call"] = summary_json(order_stats(device_path.call_ms));
+    j["frame_ms"]["device_wall"] = summary_json(order_stats(device_path.done_ms));
+  }
   j["frame_mpix_per_s"] = filter.median > 0 ? pixels / (filter.median * 1e3) : 0.0;
   j["ceilings"] = {{"copy_gbs", ceilings.copy_gbs},
                    {"ops_per_s", ceilings.ops_per_s},
@@ -388,6 +401,12 @@ void print_timing(const json& e, std::FILE* f) {
     std::fprintf(f, " %8s %8s %6s %8s %9s %7s", "n/a", "n/a", "", "n/a", "n/a", "n/a");
   std::fprintf(f, "\n  %-15s %9.3f %9.3f   (denoise() call, host clock)\n", "frame wall",
                fm["wall"]["median"].get<double>(), fm["wall"]["p95"].get<double>());
+  if (fm.contains("device_wall"))
+    std::fprintf(f,
+                 "  %-15s %9.3f %9.3f   (device path: denoise_device() call to the frame done; "
+                 "the call itself %.3f ms)\n",
+                 "frame wall", fm["device_wall"]["median"].get<double>(),
+                 fm["device_wall"]["p95"].get<double>(), fm["device_call"]["median"].get<double>());
   for (const json& s : e["stages"])
     if (s.contains("per_tap"))
       std::fprintf(f,

@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/device_frame.h"
 #include "core/frame.h"
 #include "core/image.h"
 #include "core/sanitize.h"
@@ -86,12 +87,53 @@ FrameReport frame_report(const Engine& engine) {
   return r;
 }
 
+// The report of a denoiser's last frame. A frame on the host path is read at once; a device
+// frame (denoise_device) has not finished when the call returns, so its report is read from the
+// engine when first asked for, which waits for that frame's work. A frame that failed leaves
+// an empty report.
+class LastReport {
+ public:
+  void frame_started() {
+    report_ = FrameReport{};
+    unread_ = false;
+  }
+  template <class Engine>
+  void frame_done(const Engine& engine) {
+    unread_ = engine.frame_pending();
+    if (!unread_) report_ = frame_report(engine);
+  }
+  template <class Engine>
+  const FrameReport& of(const Engine& engine) const {
+    if (unread_) {
+      report_ = frame_report(engine);
+      unread_ = false;
+    }
+    return report_;
+  }
+
+ private:
+  mutable FrameReport report_;
+  mutable bool unread_ = false;
+};
+
 // One denoiser per sequence: it owns the history. Frames must all have the first frame's size.
+// Not thread-safe: one thread at a time calls it.
 class Denoiser {
  public:
   virtual ~Denoiser() = default;
   // Denoises `in` into `out` (resized to width x height x 3, linear HDR).
   virtual void denoise(const Frame& in, Image& out) = 0;
+  // The device path (docs/api.md, "Frames on the GPU"): denoises a frame whose buffers live in
+  // GPU memory into `out`, on the caller's CUDA stream `cuda_stream` (a cudaStream_t; nullptr:
+  // the legacy default stream), with the same bits as denoise() on the same values. Returns
+  // once the frame's work is enqueued: no host round trip, no synchronization. The frame's
+  // buffers are read, and `out` written, in stream order: reuse them after work enqueued later
+  // on that stream. Bad layouts and host addresses are std::invalid_argument before anything is
+  // enqueued; last_report() waits for the frame (its event, not the stream) and raises any
+  // fault of its kernels. Host and device frames may alternate on one denoiser. A CPU
+  // denoiser throws std::logic_error.
+  virtual void denoise_device(const DeviceFrame& in, const DeviceOutputView& out,
+                              void* cuda_stream) = 0;
   // Forget the history (camera cut); the next frame starts afresh.
   virtual void reset() = 0;
   virtual const FrameReport& last_report() const = 0;
@@ -112,6 +154,20 @@ inline void check_frame_size_unchanged(int width, int height, int w, int h) {
   throw std::invalid_argument("frame size changed mid-sequence from " + std::to_string(width) +
                               "x" + std::to_string(height) + " to " + std::to_string(w) + "x" +
                               std::to_string(h) + " (use a new denoiser for a new sequence)");
+}
+
+// What a denoiser whose backend cannot read device memory throws from denoise_device.
+inline std::logic_error device_frames_unsupported(const std::string& description) {
+  return std::logic_error("denoise_device: '" + description +
+                          "' runs on the CPU; frames in GPU memory need a CUDA denoiser "
+                          "(Backend::Cuda)");
+}
+
+// Both paths' input checks, before anything is written (a method's denoise_frame calls the one
+// its source needs).
+inline void check_frame(const Frame& f, const Image&) { check_frame_consistent(f); }
+inline void check_frame(const DeviceFrame& f, const DeviceTarget& out) {
+  check_device_frame(f, out.image);
 }
 
 inline std::invalid_argument unknown_buffer(std::string_view method, std::string_view name,

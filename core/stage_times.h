@@ -8,15 +8,20 @@
 
 namespace svgf {
 
-// The engines' own stages (CUDA only): host -> device and device -> host.
+// The engines' own stages (CUDA only): host -> device and device -> host; on the device path
+// (Denoiser::denoise_device) the copies from the caller's buffers into the denoiser's planes and
+// from its output plane into the caller's output.
 inline constexpr const char* kUploadStage = "upload";
 inline constexpr const char* kDownloadStage = "download";
+inline constexpr const char* kCopyInStage = "copy_in";
+inline constexpr const char* kCopyOutStage = "copy_out";
 
 // Every method's first stage, run by the backend on the frame's inputs (core/sanitize.h).
 inline constexpr const char* kSanitizeStage = "sanitize";
 
 inline bool is_transfer_stage(const std::string& name) {
-  return name == kUploadStage || name == kDownloadStage;
+  return name == kUploadStage || name == kDownloadStage || name == kCopyInStage ||
+         name == kCopyOutStage;
 }
 
 // Milliseconds per stage, in the order the stages first ran (a stage run several times, like

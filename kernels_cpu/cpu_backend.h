@@ -2,6 +2,10 @@
 // The CPU backend of a denoiser written once (methods/<method>/denoiser.h): the TBB engine,
 // host buffers, and a frame's inputs read in place. What a backend provides:
 //   Engine& engine()                       runs pixel kernels (run, run_tallying), times stages
+//   kDeviceFrames                          whether frames in GPU memory can be denoised where
+//                                          they lie (the CUDA backend; DeviceFrame overloads
+//                                          of begin_frame, inputs, output, finish)
+//   void begin_frame(frame, out)           the frame's bookkeeping starts (engine.begin_frame)
 //   using Buffer; allocate(buffer, channels, what)  a planar float buffer of the frame's size,
 //                                          zero-filled
 //   set_method_planes(n)                   how many planes the method allocates (for errors)
@@ -37,6 +41,7 @@ class CpuBackend {
  public:
   using Engine = CpuEngine;
   using Buffer = Image;
+  static constexpr bool kDeviceFrames = false;
 
   explicit CpuBackend(const EngineConfig& config) : engine_(config.threads) {
     if (config.mode != Mode::Exact)
@@ -44,6 +49,8 @@ class CpuBackend {
   }
 
   Engine& engine() { return engine_; }
+  const Engine& engine() const { return engine_; }
+  void begin_frame(const Frame&, const Image&) { engine_.begin_frame(); }
   // E.g. "cpu exact, x86-64-v3, 2 threads": the instruction-set variant this code was compiled
   // into (kernels_cpu/CMakeLists.txt defines its name for each variant's objects).
   std::string description() const {

@@ -58,6 +58,8 @@ class CpuEngine {
   // Per-frame bookkeeping: cleared by begin_frame(). The CPU's tallies are current as soon as
   // run_tallying returns; CUDA's only after the frame.
   void begin_frame() { times_.clear(); tallies_ = Tallies{}; }
+  // A CPU frame is done when denoise() returns (the CUDA engine's device frames may not be).
+  bool frame_pending() const { return false; }
   const StageTimes& times() const { return times_; }
   const Tallies& tallies() const { return tallies_; }
 

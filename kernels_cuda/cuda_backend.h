@@ -1,13 +1,17 @@
 #pragma once
 // The CUDA backend of a denoiser written once (the concept is described in
-// kernels_cpu/cpu_backend.h): the CUDA engine, device buffers, one pinned upload of a frame's
-// inputs and one download of its output. The two input slots alternate, so the previous frame's
-// upload is this frame's previous guides (no copy). Host-compilable.
+// kernels_cpu/cpu_backend.h): the CUDA engine, device buffers, and a frame's way in and out:
+// the host path (a Frame: one pinned upload of its inputs, one download of its output, waited
+// for) or the device path (a DeviceFrame already on the GPU: copied from the caller's buffers
+// and back on the caller's stream, nothing waited for; Denoiser::denoise_device). Either way
+// the inputs land in the same planes; the two guide slots alternate, so the previous frame's
+// inputs are this frame's previous guides (no copy). Host-compilable.
 #include <cstring>
 #include <stdexcept>
 #include <string>
 
 #include "core/denoiser.h"
+#include "core/device_frame.h"
 #include "core/frame.h"
 #include "core/frame_inputs.h"
 #include "core/sanitize.h"
@@ -16,6 +20,7 @@
 #include "kernels_cuda/cuda_handles.h"
 #include "kernels_cuda/device_array.h"
 #include "kernels_cuda/host_staging.h"
+#include "kernels_cuda/strided_copy.h"
 
 namespace svgf::cuda {
 
@@ -23,6 +28,8 @@ class CudaBackend {
  public:
   using Engine = CudaEngine;
   using Buffer = DeviceArray<float>;
+  // Frames in device memory can be denoised where they lie (the methods' denoise_device).
+  static constexpr bool kDeviceFrames = true;
 
   explicit CudaBackend(const EngineConfig& config)
       : mode_(config.mode), engine_(checked_shape(config)), host_copies_(config.threads) {
@@ -30,6 +37,7 @@ class CudaBackend {
   }
 
   Engine& engine() { return engine_; }
+  const Engine& engine() const { return engine_; }
 
   std::string description() const {
     cudaDeviceProp prop{};
@@ -91,6 +99,9 @@ class CudaBackend {
                               std::to_string(mib) + " MiB of device memory in all)";
     b.resize(static_cast<size_t>(channels) * pixels(), named.c_str());
     SVGF_CUDA_CHECK(cudaMemset(b.get(), 0, b.size() * sizeof(float)), named);
+    // cudaMemset may still run when it returns, and the frames' streams (ours, non-blocking, or
+    // the caller's) are not ordered after it: wait, once per buffer and sequence.
+    SVGF_CUDA_CHECK(cudaStreamSynchronize(nullptr), named);
   }
   float* plane(const Buffer& b, int c) const { return b.get() + static_cast<size_t>(c) * pixels(); }
   // Three planes of a buffer from `first_plane` on, as a color view.
@@ -99,10 +110,22 @@ class CudaBackend {
   }
   Image read(const Buffer& b) const {
     SVGF_CUDA_CHECK(cudaSetDevice(device_), "cudaSetDevice");
-    SVGF_CUDA_CHECK(cudaStreamSynchronize(engine_.stream()), "read_buffer: cudaStreamSynchronize");
+    engine_.wait_frame();
     Image im(width_, height_, static_cast<int>(b.size() / pixels()));
     b.download(im.data().data(), im.data().size());
     return im;
+  }
+
+  // The host path's frame runs on the engine's own stream.
+  void begin_frame(const Frame&, const Image&) { engine_.begin_frame(); }
+  // The device path's on the caller's stream, once every address it names is device memory
+  // this denoiser can use (checked before anything is enqueued).
+  void begin_frame(const DeviceFrame& in, const DeviceTarget& out) {
+    for_each_device_channel(in, [&](const char* name, const DeviceImageView& v, int, bool) {
+      if (!v.empty()) check_device_memory(v.data, in.index, std::string("channel '") + name + "'");
+    });
+    check_device_memory(out.image.data, in.index, "the output");
+    engine_.begin_frame(static_cast<cudaStream_t>(out.stream));
   }
 
   // Uploads the frame: its planes copied into pinned memory on the host's cores (HostStaging),
@@ -140,17 +163,13 @@ class CudaBackend {
     // frame with gradient samples but no emission sends the unused emission planes along).
     const int planes = gradient ? kInputPlanes : (emission ? kGradient : kRequiredPlanes);
     if (position) {
-      if (position_.size() != 3 * n) {
-        allocate(position_, 3, "world positions");
-        staging_position_.resize(3 * n, "the pinned position staging buffer");
-      }
+      ensure_position();
+      staging_position_.resize(3 * n, "the pinned position staging buffer");
       host_copies_.add(staging_position_.get(), in.position.plane(0), 3 * n * sizeof(float));
     }
     if (split) {
-      if (split_.size() != 6 * n) {
-        allocate(split_, 6, "direct and indirect");
-        staging_split_.resize(6 * n, "the pinned direct and indirect staging buffer");
-      }
+      ensure_split();
+      staging_split_.resize(6 * n, "the pinned direct and indirect staging buffer");
       host_copies_.add(staging_split_.get(), in.direct.plane(0), 3 * n * sizeof(float));
       host_copies_.add(staging_split_.get() + 3 * n, in.indirect.plane(0), 3 * n * sizeof(float));
     }
@@ -163,6 +182,80 @@ class CudaBackend {
                           engine_.stream());
     if (position) position_.upload_async(staging_position_.get(), 3 * n, engine_.stream());
     if (split) split_.upload_async(staging_split_.get(), 6 * n, engine_.stream());
+    return landed_inputs(emission, gradient, position, split);
+  }
+
+  // The device path: every channel of the caller's frame copied into the same planes as an
+  // upload's, in one launch on the caller's stream (timed as copy_in); the caller's buffers
+  // are only read.
+  FrameInputs inputs(const DeviceFrame& in, bool position = false, bool split = false,
+                     bool want_gradient = false) {
+    if (position) ensure_position();
+    if (split) ensure_split();
+    StridedCopy copy;
+    // Channel c of view v goes to plane_of(c).
+    auto add = [&](const DeviceImageView& v, int channels, auto plane_of) {
+      for (int c = 0; c < channels; ++c)
+        copy.add(StridedCopy::from_view(v, c, plane_of(c), width_));
+    };
+    auto input = [this](int first) { return [this, first](int c) { return input_plane(first + c); }; };
+    add(in.depth, 1, input(kDepth));
+    add(in.depth_gradient, 2, input(kDepthDx));
+    add(in.normal, 3, input(kNormal));
+    add(in.motion, 2, input(kMotionX));
+    add(in.mesh_id, 1, input(kMeshId));
+    add(in.color, 3, input(kColor));
+    add(in.albedo, 3, input(kAlbedo));
+    const bool emission = !in.emission.empty();
+    if (emission) add(in.emission, 3, input(kEmission));
+    const bool gradient = want_gradient && !in.gradient.empty();
+    if (gradient) add(in.gradient, 3, input(kGradient));
+    if (position) add(in.position, 3, [this](int c) { return plane(position_, c); });
+    if (split) {
+      add(in.direct, 3, [this](int c) { return plane(split_, c); });
+      add(in.indirect, 3, [this](int c) { return plane(split_, 3 + c); });
+    }
+    engine_.run(kCopyInStage, copy, width_, height_);
+    return landed_inputs(emission, gradient, position, split);
+  }
+
+  GuideView previous_guides() const { return guides(1 - slot_); }
+  RgbView output(Image&) { return rgb(output_, 0); }
+  RgbView output(const DeviceTarget&) { return rgb(output_, 0); }
+
+  // Downloads the output and waits for the frame (raising any fault of its kernels).
+  void finish(const Frame&, Image& out) {
+    const size_t n = pixels();
+    engine_.mark(kDownloadStage);
+    output_.download_async(staging_out_.get(), 3 * n, engine_.stream());
+    engine_.end_frame();
+    out.ensure_shape(width_, height_, 3);  // overwritten whole by the copy below
+    host_copies_.add(out.data().data(), staging_out_.get(), 3 * n * sizeof(float));
+    host_copies_.run();
+    slot_ = 1 - slot_;
+  }
+  // The device path: the output copied into the caller's (timed as copy_out), and the frame's
+  // end recorded on the caller's stream; nothing waits (the report is read when asked for).
+  void finish(const DeviceFrame&, const DeviceTarget& out) {
+    StridedCopy copy;
+    for (int c = 0; c < 3; ++c)
+      copy.add(StridedCopy::to_view(plane(output_, c), width_, out.image, c));
+    engine_.run(kCopyOutStage, copy, width_, height_);
+    engine_.end_frame_async();
+    slot_ = 1 - slot_;
+  }
+
+ private:
+  // The buffers of the optional inputs, made on the first frame that asks for them.
+  void ensure_position() {
+    if (position_.size() != 3 * pixels()) allocate(position_, 3, "world positions");
+  }
+  void ensure_split() {
+    if (split_.size() != 6 * pixels()) allocate(split_, 6, "direct and indirect");
+  }
+
+  // The frame's inputs in the backend's planes, sanitized: what both paths hand the method.
+  FrameInputs landed_inputs(bool emission, bool gradient, bool position, bool split) {
     FrameInputs f;
     f.guides = guides(slot_);
     f.color = input_rgb(kColor);
@@ -181,22 +274,27 @@ class CudaBackend {
     sanitize(f, emission, position, split);
     return f;
   }
-  GuideView previous_guides() const { return guides(1 - slot_); }
-  RgbView output(Image&) { return rgb(output_, 0); }
 
-  // Downloads the output and waits for the frame (raising any fault of its kernels).
-  void finish(const Frame&, Image& out) {
-    const size_t n = pixels();
-    engine_.mark(kDownloadStage);
-    output_.download_async(staging_out_.get(), 3 * n, engine_.stream());
-    engine_.end_frame();
-    out.ensure_shape(width_, height_, 3);  // overwritten whole by the copy below
-    host_copies_.add(out.data().data(), staging_out_.get(), 3 * n * sizeof(float));
-    host_copies_.run();
-    slot_ = 1 - slot_;
+  // std::invalid_argument unless `p` is device (or managed) memory of this denoiser's device:
+  // a host address would fault inside a kernel, long after the call returned.
+  void check_device_memory(const void* p, int frame, const std::string& what) const {
+    cudaPointerAttributes a{};
+    const cudaError_t e = cudaPointerGetAttributes(&a, p);
+    if (e != cudaSuccess) (void)cudaGetLastError();
+    const bool device = e == cudaSuccess && (a.type == cudaMemoryTypeDevice ||
+                                             a.type == cudaMemoryTypeManaged);
+    const std::string where = "frame " + std::to_string(frame) + " (device): " + what;
+    if (!device)
+      throw std::invalid_argument(where + " is not device memory (" +
+                                  (e != cudaSuccess ? std::string(cudaGetErrorString(e))
+                                   : a.type == cudaMemoryTypeHost ? "pinned host memory"
+                                                                  : "host memory") +
+                                  "); the host path is denoise()");
+    if (a.type == cudaMemoryTypeDevice && a.device != device_)
+      throw std::invalid_argument(where + " is memory of CUDA device " + std::to_string(a.device) +
+                                  ", this denoiser runs on device " + std::to_string(device_));
   }
 
- private:
   // The sanitize stage (core/sanitize.h), in place on the uploaded planes: a clean pixel is
   // only read.
   void sanitize(const FrameInputs& f, bool emission, bool position, bool split) {

@@ -96,20 +96,20 @@ void launch_blocks(const K& k, int blocks, cudaStream_t stream, const char* what
 template <class Kernel>
 void CudaEngine::run_blocks(const char* stage, const Kernel& kernel, int blocks) {
   mark(stage);
-  launch_blocks(kernel, blocks, stream_.get(), stage);
+  launch_blocks(kernel, blocks, stream_, stage);
 }
 
 template <class Kernel>
 void CudaEngine::run(const char* stage, const Kernel& kernel, int width, int height) {
   mark(stage);
-  launch(kernel, width, height, shape_, stream_.get(), stage);
+  launch(kernel, width, height, shape_, stream_, stage);
 }
 
 template <class Kernel>
 void CudaEngine::run_tallying(const char* stage, const Kernel& kernel, int width, int height) {
   static_assert(std::is_same_v<decltype(kernel(0, 0)), uint32_t>, "a tallying kernel returns a mask");
   mark(stage);
-  launch(kernel, width, height, shape_, stream_.get(), stage, counter_.get());
+  launch(kernel, width, height, shape_, stream_, stage, counter_.get());
 }
 
 // One kernel on the default stream, waited for: for tests and tools. Views inside the kernel

@@ -72,11 +72,12 @@ void print_tally() {
   const auto& t = svgf::gpu_test::tally();
   std::printf("\nsummary: %lld single-stage runs compared bitwise (%lld values); %lld pipeline "
               "frames CPU vs CUDA exact bitwise (%lld output and debug values); %lld frames "
-              "in determinism checks; %lld fast-mode frames within tolerance\n",
+              "in determinism checks; %lld fast-mode frames within tolerance; %lld device-path "
+              "frames bitwise equal to the host path's\n",
               static_cast<long long>(t.stage_runs), static_cast<long long>(t.stage_values),
               static_cast<long long>(t.frames), static_cast<long long>(t.frame_values),
               static_cast<long long>(t.determinism_frames),
-              static_cast<long long>(t.fast_frames));
+              static_cast<long long>(t.fast_frames), static_cast<long long>(t.device_frames));
   if (t.fast_frames > 0)
     std::printf("fast vs exact, worst frame: relMSE %.3g (%s); |PSNR delta| %.4f dB (%s)\n",
                 t.fast_worst_relmse, t.fast_worst_relmse_at.c_str(), t.fast_worst_psnr_delta,

@@ -23,6 +23,7 @@ struct Tally {
   int64_t frame_values = 0;
   int64_t determinism_frames = 0;
   int64_t fast_frames = 0;      // fast-mode frames checked against the tolerance
+  int64_t device_frames = 0;    // frames through denoise_device compared with denoise()
   double fast_worst_relmse = 0;
   std::string fast_worst_relmse_at;
   double fast_worst_psnr_delta = 0;

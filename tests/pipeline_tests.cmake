@@ -12,3 +12,5 @@ add_test(NAME svgf_cpu_variants_isolated
           -DWORK=${CMAKE_CURRENT_BINARY_DIR}/variant_isolation -DAR=${CMAKE_AR} -DNM=${CMAKE_NM}
           -DOBJDUMP=${CMAKE_OBJDUMP} -DSANITIZED=$<OR:$<BOOL:${SVGF_SANITIZE}>,$<BOOL:${SVGF_FUZZ}>>
           -P ${PROJECT_SOURCE_DIR}/kernels_cpu/check_variant_isolation.cmake)
+# The device path's host side (views, layout rules, a CPU denoiser's refusal): no GPU needed.
+svgf_add_tests(svgf_device_frame_tests SOURCES device_frame_test.cpp LIBS svgf_pipeline)

@@ -148,53 +148,19 @@ class BmfrDenoiser final : public Denoiser {
     backend_.set_method_planes(2 * history_planes() + frame_data_planes() + 1);  // + blocks
   }
 
-  void denoise(const Frame& in, Image& out) override {
-    check_frame_consistent(in);
-    if (in.position.empty())
-      throw std::invalid_argument("frame " + std::to_string(in.index) +
-                                  ": bmfr needs the 'position' channel (world positions)");
-    if (backend_.resize(in.width(), in.height())) allocate(in.width(), in.height());
-    auto& engine = backend_.engine();
-    engine.begin_frame();
-    const int prev = slot_, next = 1 - slot_;
-    BmfrFrameBuffers b;
-    b.in = backend_.inputs(in, /*position=*/true);
-    b.prev_position = backend_.rgb(history_[prev], kPosition);
-    b.prev_normal = backend_.rgb(history_[prev], kNormal);
-    b.prev_noisy = backend_.rgb(history_[prev], kNoisy);
-    b.prev_accumulated = backend_.rgb(history_[prev], kAccumulated);
-    b.prev_length = backend_.plane(history_[prev], kLength);
-    b.position = backend_.rgb(history_[next], kPosition);
-    b.normal = backend_.rgb(history_[next], kNormal);
-    b.noisy = backend_.rgb(history_[next], kNoisy);
-    b.accumulated = backend_.rgb(history_[next], kAccumulated);
-    b.length = backend_.plane(history_[next], kLength);
-    b.reprojection = {backend_.plane(frame_data_, 0), backend_.plane(frame_data_, 1),
-                      backend_.plane(frame_data_, 2)};
-    b.filtered = backend_.rgb(frame_data_, 3);
-    if (params_.taa) {
-      b.remodulated = backend_.rgb(frame_data_, kRemodulated);
-      b.prev_taa = backend_.rgb(history_[prev], kTaa);
-      b.taa = backend_.rgb(history_[next], kTaa);
+  void denoise(const Frame& in, Image& out) override { denoise_frame(in, out); }
+  void denoise_device(const DeviceFrame& in, const DeviceOutputView& out,
+                      void* cuda_stream) override {
+    if constexpr (Backend::kDeviceFrames) {
+      DeviceTarget target{out, cuda_stream};
+      denoise_frame(in, target);
+    } else {
+      throw device_frames_unsupported(description());
     }
-    b.blocks.data = backend_.plane(blocks_, 0);
-    b.output = backend_.output(out);
-#if defined(__CUDACC__)
-    if (mode_ == Mode::Fast)
-      run_bmfr_frame<FastArith>(engine, b, params_, frame_, has_history_);
-    else
-#endif
-      run_bmfr_frame<ExactArith>(engine, b, params_, frame_, has_history_);
-    backend_.finish(in, out);
-    last_grid_ = BmfrGrid::of(in.width(), in.height(), frame_);
-    slot_ = next;
-    has_history_ = true;
-    ++frame_;
-    report_ = frame_report(engine);
   }
 
   void reset() override { has_history_ = false; }
-  const FrameReport& last_report() const override { return report_; }
+  const FrameReport& last_report() const override { return report_.of(backend_.engine()); }
   std::string description() const override {
     return std::string("bmfr (") + to_string(params_.rank_strategy) +
            (params_.taa ? ", taa" : "") + ") " + backend_.description();
@@ -233,6 +199,55 @@ class BmfrDenoiser final : public Denoiser {
   }
 
  private:
+  // One frame, either path: a Frame into an Image, or a DeviceFrame into a DeviceTarget (the
+  // backend's overloads move the data; the frame is the same).
+  template <class Source, class Target>
+  void denoise_frame(const Source& in, Target& out) {
+    report_.frame_started();
+    check_frame(in, out);
+    if (in.position.empty())
+      throw std::invalid_argument("frame " + std::to_string(in.index) +
+                                  ": bmfr needs the 'position' channel (world positions)");
+    if (backend_.resize(in.width(), in.height())) allocate(in.width(), in.height());
+    auto& engine = backend_.engine();
+    backend_.begin_frame(in, out);
+    const int prev = slot_, next = 1 - slot_;
+    BmfrFrameBuffers b;
+    b.in = backend_.inputs(in, /*position=*/true);
+    b.prev_position = backend_.rgb(history_[prev], kPosition);
+    b.prev_normal = backend_.rgb(history_[prev], kNormal);
+    b.prev_noisy = backend_.rgb(history_[prev], kNoisy);
+    b.prev_accumulated = backend_.rgb(history_[prev], kAccumulated);
+    b.prev_length = backend_.plane(history_[prev], kLength);
+    b.position = backend_.rgb(history_[next], kPosition);
+    b.normal = backend_.rgb(history_[next], kNormal);
+    b.noisy = backend_.rgb(history_[next], kNoisy);
+    b.accumulated = backend_.rgb(history_[next], kAccumulated);
+    b.length = backend_.plane(history_[next], kLength);
+    b.reprojection = {backend_.plane(frame_data_, 0), backend_.plane(frame_data_, 1),
+                      backend_.plane(frame_data_, 2)};
+    b.filtered = backend_.rgb(frame_data_, 3);
+    if (params_.taa) {
+      b.remodulated = backend_.rgb(frame_data_, kRemodulated);
+      b.prev_taa = backend_.rgb(history_[prev], kTaa);
+      b.taa = backend_.rgb(history_[next], kTaa);
+    }
+    b.blocks.data = backend_.plane(blocks_, 0);
+    b.output = backend_.output(out);
+#if defined(__CUDACC__)
+    if (mode_ == Mode::Fast)
+      run_bmfr_frame<FastArith>(engine, b, params_, frame_, has_history_);
+    else
+#endif
+      run_bmfr_frame<ExactArith>(engine, b, params_, frame_, has_history_);
+    backend_.finish(in, out);  // the host path waits here, the device path does not
+    last_grid_ = BmfrGrid::of(in.width(), in.height(), frame_);
+    slot_ = next;
+    has_history_ = true;
+    ++frame_;
+    report_.frame_done(engine);
+  }
+
   // The planes of a history slot (the TAA output only with TAA), and of the frame's data.
   enum : int { kPosition = 0, kNormal = 3, kNoisy = 6, kAccumulated = 9, kLength = 12, kTaa = 13 };
   enum : int { kRemodulated = 6 };
@@ -261,7 +276,7 @@ class BmfrDenoiser final : public Denoiser {
   int frame_ = 0;  // frames since construction: picks the grid's offset and the noise
   BmfrGrid last_grid_;
   bool has_history_ = false;
-  FrameReport report_;
+  LastReport report_;
 };
 
 }  // namespace svgf

@@ -43,27 +43,19 @@ class GaussianDenoiser final : public Denoiser {
     backend_.set_method_planes(3);
   }
 
-  void denoise(const Frame& in, Image& out) override {
-    check_frame_consistent(in);
-    if (backend_.resize(in.width(), in.height())) backend_.allocate(blurred_, 3, "blurred rows");
-    auto& engine = backend_.engine();
-    engine.begin_frame();
-    const FrameInputs cur = backend_.inputs(in);
-    const RgbView output = backend_.output(out);
-#if defined(__CUDACC__)
-    if (mode_ == Mode::Fast)
-      run_gaussian_frame<FastArith>(engine, cur.color, backend_.rgb(blurred_), output,
-                                    in.width(), in.height(), params_);
-    else
-#endif
-      run_gaussian_frame<ExactArith>(engine, cur.color, backend_.rgb(blurred_), output,
-                                     in.width(), in.height(), params_);
-    backend_.finish(in, out);
-    report_ = frame_report(engine);
+  void denoise(const Frame& in, Image& out) override { denoise_frame(in, out); }
+  void denoise_device(const DeviceFrame& in, const DeviceOutputView& out,
+                      void* cuda_stream) override {
+    if constexpr (Backend::kDeviceFrames) {
+      DeviceTarget target{out, cuda_stream};
+      denoise_frame(in, target);
+    } else {
+      throw device_frames_unsupported(description());
+    }
   }
 
   void reset() override {}  // no history
-  const FrameReport& last_report() const override { return report_; }
+  const FrameReport& last_report() const override { return report_.of(backend_.engine()); }
   std::string description() const override { return "gaussian " + backend_.description(); }
   std::vector<std::string> stages() const override {
     return {kSanitizeStage, gaussian_stage::kBlurX, gaussian_stage::kBlurY};
@@ -76,11 +68,34 @@ class GaussianDenoiser final : public Denoiser {
   }
 
  private:
+  // One frame, either path: a Frame into an Image, or a DeviceFrame into a DeviceTarget (the
+  // backend's overloads move the data; the frame is the same).
+  template <class Source, class Target>
+  void denoise_frame(const Source& in, Target& out) {
+    report_.frame_started();
+    check_frame(in, out);
+    if (backend_.resize(in.width(), in.height())) backend_.allocate(blurred_, 3, "blurred rows");
+    auto& engine = backend_.engine();
+    backend_.begin_frame(in, out);
+    const FrameInputs cur = backend_.inputs(in);
+    const RgbView output = backend_.output(out);
+#if defined(__CUDACC__)
+    if (mode_ == Mode::Fast)
+      run_gaussian_frame<FastArith>(engine, cur.color, backend_.rgb(blurred_), output,
+                                    in.width(), in.height(), params_);
+    else
+#endif
+      run_gaussian_frame<ExactArith>(engine, cur.color, backend_.rgb(blurred_), output,
+                                     in.width(), in.height(), params_);
+    backend_.finish(in, out);  // the host path waits here, the device path does not
+    report_.frame_done(engine);
+  }
+
   GaussianParams params_;
   Mode mode_;
   Backend backend_;
   typename Backend::Buffer blurred_;
-  FrameReport report_;
+  LastReport report_;
 };
 
 }  // namespace svgf

@@ -84,47 +84,19 @@ class JbfDenoiser final : public Denoiser {
     backend_.set_method_planes(3 + 6 + (params_.atrous() ? 6 : 0));
   }
 
-  void denoise(const Frame& in, Image& out) override {
-    check_frame_consistent(in);
-    if (in.position.empty())
-      throw std::invalid_argument("frame " + std::to_string(in.index) +
-                                  ": jbf needs the 'position' channel (world positions)");
-    if (backend_.resize(in.width(), in.height())) {
-      backend_.allocate(filtered_, 3, "jbf filtered color");
-      for (int s = 0; s < 2; ++s) backend_.allocate(accumulated_[s], 3, "jbf accumulation");
-      has_history_ = false;
-      if (params_.atrous()) {
-        backend_.allocate(signal_[0], 3, "jbf a-trous signal 0");
-        backend_.allocate(signal_[1], 3, "jbf a-trous signal 1");
-      }
+  void denoise(const Frame& in, Image& out) override { denoise_frame(in, out); }
+  void denoise_device(const DeviceFrame& in, const DeviceOutputView& out,
+                      void* cuda_stream) override {
+    if constexpr (Backend::kDeviceFrames) {
+      DeviceTarget target{out, cuda_stream};
+      denoise_frame(in, target);
+    } else {
+      throw device_frames_unsupported(description());
     }
-    auto& engine = backend_.engine();
-    engine.begin_frame();
-    JbfFrameBuffers b;
-    b.in = backend_.inputs(in, /*position=*/true);
-    b.prev_guides = backend_.previous_guides();
-    b.filtered = backend_.rgb(filtered_);
-    b.prev_accumulated = backend_.rgb(accumulated_[slot_]);
-    b.accumulated = backend_.rgb(accumulated_[1 - slot_]);
-    if (params_.atrous()) {
-      b.signal[0] = backend_.rgb(signal_[0]);
-      b.signal[1] = backend_.rgb(signal_[1]);
-    }
-    b.output = backend_.output(out);
-#if defined(__CUDACC__)
-    if (mode_ == Mode::Fast)
-      run_jbf_frame<FastArith>(engine, b, params_, has_history_);
-    else
-#endif
-      run_jbf_frame<ExactArith>(engine, b, params_, has_history_);
-    backend_.finish(in, out);
-    slot_ = 1 - slot_;
-    has_history_ = true;
-    report_ = frame_report(engine);
   }
 
   void reset() override { has_history_ = false; }
-  const FrameReport& last_report() const override { return report_; }
+  const FrameReport& last_report() const override { return report_.of(backend_.engine()); }
   std::string description() const override {
     return (params_.atrous() ? "jbf-atrous " + std::to_string(params_.levels) + " levels "
                              : "jbf r" + std::to_string(params_.radius) + " ") +
@@ -148,13 +120,56 @@ class JbfDenoiser final : public Denoiser {
   }
 
  private:
+  // One frame, either path: a Frame into an Image, or a DeviceFrame into a DeviceTarget (the
+  // backend's overloads move the data; the frame is the same).
+  template <class Source, class Target>
+  void denoise_frame(const Source& in, Target& out) {
+    report_.frame_started();
+    check_frame(in, out);
+    if (in.position.empty())
+      throw std::invalid_argument("frame " + std::to_string(in.index) +
+                                  ": jbf needs the 'position' channel (world positions)");
+    if (backend_.resize(in.width(), in.height())) {
+      backend_.allocate(filtered_, 3, "jbf filtered color");
+      for (int s = 0; s < 2; ++s) backend_.allocate(accumulated_[s], 3, "jbf accumulation");
+      has_history_ = false;
+      if (params_.atrous()) {
+        backend_.allocate(signal_[0], 3, "jbf a-trous signal 0");
+        backend_.allocate(signal_[1], 3, "jbf a-trous signal 1");
+      }
+    }
+    auto& engine = backend_.engine();
+    backend_.begin_frame(in, out);
+    JbfFrameBuffers b;
+    b.in = backend_.inputs(in, /*position=*/true);
+    b.prev_guides = backend_.previous_guides();
+    b.filtered = backend_.rgb(filtered_);
+    b.prev_accumulated = backend_.rgb(accumulated_[slot_]);
+    b.accumulated = backend_.rgb(accumulated_[1 - slot_]);
+    if (params_.atrous()) {
+      b.signal[0] = backend_.rgb(signal_[0]);
+      b.signal[1] = backend_.rgb(signal_[1]);
+    }
+    b.output = backend_.output(out);
+#if defined(__CUDACC__)
+    if (mode_ == Mode::Fast)
+      run_jbf_frame<FastArith>(engine, b, params_, has_history_);
+    else
+#endif
+      run_jbf_frame<ExactArith>(engine, b, params_, has_history_);
+    backend_.finish(in, out);  // the host path waits here, the device path does not
+    slot_ = 1 - slot_;
+    has_history_ = true;
+    report_.frame_done(engine);
+  }
+
   JbfParams params_;
   Mode mode_;
   Backend backend_;
   typename Backend::Buffer filtered_, accumulated_[2], signal_[2];
   int slot_ = 0;  // accumulated_[slot_] is the history the next frame reads
   bool has_history_ = false;
-  FrameReport report_;
+  LastReport report_;
 };
 
 }  // namespace svgf

@@ -27,52 +27,19 @@ class SvgfDenoiser final : public Denoiser {
                                (gradient_mode() ? 1 : 0) + (params_.taa ? 3 * 3 : 0));
   }
 
-  void denoise(const Frame& in, Image& out) override {
-    check_frame_consistent(in);
-    const bool split = splits(in);
-    if (backend_.resize(in.width(), in.height())) allocate();
-    if (split && !split_allocated_) allocate_split();
-    // The history of a frame filtered the other way cannot continue (a single signal's holds
-    // direct + indirect, a split frame's direct history holds direct only): start afresh.
-    if (split != split_history_) has_history_ = false;
-    auto& engine = backend_.engine();
-    engine.begin_frame();
-    const FrameInputs cur = backend_.inputs(in, /*position=*/false, split, gradient_mode());
-
-    SvgfFrameBuffers b = signal_buffers(cur, 0, backend_.output(out));
-    b.color = split ? cur.direct : cur.color;
-    if (params_.taa) {
-      b.remodulated = backend_.rgb(remodulated_);
-      b.prev_taa = backend_.rgb(taa_history_[slot_]);
-      b.next_taa = backend_.rgb(taa_history_[1 - slot_]);
+  void denoise(const Frame& in, Image& out) override { denoise_frame(in, out); }
+  void denoise_device(const DeviceFrame& in, const DeviceOutputView& out,
+                      void* cuda_stream) override {
+    if constexpr (Backend::kDeviceFrames) {
+      DeviceTarget target{out, cuda_stream};
+      denoise_frame(in, target);
+    } else {
+      throw device_frames_unsupported(description());
     }
-    if (gradient_mode()) {
-      b.strata = backend_.plane(strata_, 0);
-      if (has_gradient_samples(in)) b.gradient_samples = cur.gradient;
-    }
-    SvgfFrameBuffers indirect;
-    if (split) {
-      indirect = signal_buffers(cur, 1, backend_.rgb(indirect_output_));
-      indirect.color = cur.indirect;
-      indirect.emission = {};  // the emission is part of direct
-    }
-#if defined(__CUDACC__)
-    if (mode_ == Mode::Fast) {
-      b.packed_guides = indirect.packed_guides = backend_.plane(packed_guides_, 0);
-      run<SvgfFast>(engine, split, b, indirect);
-    } else
-#endif
-      run<SvgfExact>(engine, split, b, indirect);
-    backend_.finish(in, out);  // waits for the frame; raises any fault of its kernels
-
-    slot_ = 1 - slot_;
-    has_history_ = true;
-    split_history_ = split;
-    report_ = frame_report(engine);
   }
 
   void reset() override { has_history_ = false; }
-  const FrameReport& last_report() const override { return report_; }
+  const FrameReport& last_report() const override { return report_.of(backend_.engine()); }
   std::string description() const override { return "svgf " + backend_.description(); }
   std::vector<std::string> stages() const override { return svgf_stage::all(params_.taa); }
   std::vector<std::string> debug_buffers() const override {
@@ -99,12 +66,65 @@ class SvgfDenoiser final : public Denoiser {
   }
 
  private:
+  // One frame, either path: `in` a Frame (host) or a DeviceFrame, `out` an Image or a
+  // DeviceTarget; the backend's overloads move the data, the frame below is the same.
+  template <class Source, class Target>
+  void denoise_frame(const Source& in, Target& out) {
+    report_.frame_started();
+    check_frame(in, out);
+    const bool split = splits(in);
+    if (backend_.resize(in.width(), in.height())) allocate();
+    if (split && !split_allocated_) allocate_split();
+    // The history of a frame filtered the other way cannot continue (a single signal's holds
+    // direct + indirect, a split frame's direct history holds direct only): start afresh.
+    if (split != split_history_) has_history_ = false;
+    auto& engine = backend_.engine();
+    backend_.begin_frame(in, out);
+    const FrameInputs cur = backend_.inputs(in, /*position=*/false, split, gradient_mode());
+
+    SvgfFrameBuffers b = signal_buffers(cur, 0, backend_.output(out));
+    b.color = split ? cur.direct : cur.color;
+    if (params_.taa) {
+      b.remodulated = backend_.rgb(remodulated_);
+      b.prev_taa = backend_.rgb(taa_history_[slot_]);
+      b.next_taa = backend_.rgb(taa_history_[1 - slot_]);
+    }
+    if (gradient_mode()) {
+      b.strata = backend_.plane(strata_, 0);
+      if (has_gradient_samples(in)) b.gradient_samples = cur.gradient;
+    }
+    SvgfFrameBuffers indirect;
+    if (split) {
+      indirect = signal_buffers(cur, 1, backend_.rgb(indirect_output_));
+      indirect.color = cur.indirect;
+      indirect.emission = {};  // the emission is part of direct
+    }
+#if defined(__CUDACC__)
+    if (mode_ == Mode::Fast) {
+      b.packed_guides = indirect.packed_guides = backend_.plane(packed_guides_, 0);
+      run<SvgfFast>(engine, split, b, indirect);
+    } else
+#endif
+      run<SvgfExact>(engine, split, b, indirect);
+    // The host path waits for the frame here and raises any fault of its kernels; the
+    // device path returns (the faults show in last_report()).
+    backend_.finish(in, out);
+
+    slot_ = 1 - slot_;
+    has_history_ = true;
+    split_history_ = split;
+    report_.frame_done(engine);
+  }
+
+
   bool gradient_mode() const { return params_.antilag == Antilag::Gradient; }
 
   // A frame has gradient samples when it carries the group and at least one stratum holds one
   // (the first frame and the frame after a cut have none); else the statistics anti-lag runs.
   // Read on the host (the frame is there on every backend); a frame with samples stops at the
   // first stratum's.
+  // A device frame's are never read on the host: its view is empty on a frame without any.
+  static bool has_gradient_samples(const DeviceFrame& f) { return !f.gradient.empty(); }
   static bool has_gradient_samples(const Frame& f) {
     if (f.gradient.empty()) return false;
     const float* mask = f.gradient.plane(2);
@@ -126,7 +146,8 @@ class SvgfDenoiser final : public Denoiser {
 
   // Whether this frame is filtered as direct + indirect; std::invalid_argument for a frame that
   // carries half the split (when the split is not off) or none of it with split on.
-  bool splits(const Frame& f) const {
+  template <class Source>
+  bool splits(const Source& f) const {
     if (params_.split == SplitMode::Off) return false;
     const bool direct = !f.direct.empty(), indirect = !f.indirect.empty();
     const std::string frame = "frame " + std::to_string(f.index) + ": ";
@@ -247,7 +268,7 @@ class SvgfDenoiser final : public Denoiser {
   typename Backend::Buffer illumination_, accumulated_, signal_[2], packed_guides_, strata_;
   typename Backend::Buffer indirect_output_;
   typename Backend::Buffer remodulated_, taa_history_[2];  // only with TAA
-  FrameReport report_;
+  LastReport report_;
 };
 
 }  // namespace svgf

@@ -95,39 +95,19 @@ class WaveletDenoiser final : public Denoiser {
     backend_.set_method_planes(3 + 1 + 1 + 1 + 2 * 3);
   }
 
-  void denoise(const Frame& in, Image& out) override {
-    check_frame_consistent(in);
-    if (backend_.resize(in.width(), in.height())) {
-      backend_.allocate(illumination_, 3, "wavelet illumination");
-      backend_.allocate(luma_, 1, "wavelet luma");
-      backend_.allocate(spread_, 1, "wavelet spread");
-      backend_.allocate(deviation_, 1, "wavelet deviation");
-      backend_.allocate(signal_[0], 3, "wavelet signal 0");
-      backend_.allocate(signal_[1], 3, "wavelet signal 1");
+  void denoise(const Frame& in, Image& out) override { denoise_frame(in, out); }
+  void denoise_device(const DeviceFrame& in, const DeviceOutputView& out,
+                      void* cuda_stream) override {
+    if constexpr (Backend::kDeviceFrames) {
+      DeviceTarget target{out, cuda_stream};
+      denoise_frame(in, target);
+    } else {
+      throw device_frames_unsupported(description());
     }
-    auto& engine = backend_.engine();
-    engine.begin_frame();
-    WaveletFrameBuffers b;
-    b.in = backend_.inputs(in);
-    b.illumination = backend_.rgb(illumination_);
-    b.luma = backend_.plane(luma_, 0);
-    b.spread = backend_.plane(spread_, 0);
-    b.deviation = backend_.plane(deviation_, 0);
-    b.signal[0] = backend_.rgb(signal_[0]);
-    b.signal[1] = backend_.rgb(signal_[1]);
-    b.output = backend_.output(out);
-#if defined(__CUDACC__)
-    if (mode_ == Mode::Fast)
-      run_wavelet_frame<FastArith>(engine, b, params_);
-    else
-#endif
-      run_wavelet_frame<ExactArith>(engine, b, params_);
-    backend_.finish(in, out);
-    report_ = frame_report(engine);
   }
 
   void reset() override {}  // no history
-  const FrameReport& last_report() const override { return report_; }
+  const FrameReport& last_report() const override { return report_.of(backend_.engine()); }
   std::string description() const override {
     return "wavelet " + std::to_string(params_.kernel_size) + "x" +
            std::to_string(params_.kernel_size) + " " + backend_.description();
@@ -156,11 +136,46 @@ class WaveletDenoiser final : public Denoiser {
   }
 
  private:
+  // One frame, either path: a Frame into an Image, or a DeviceFrame into a DeviceTarget (the
+  // backend's overloads move the data; the frame is the same).
+  template <class Source, class Target>
+  void denoise_frame(const Source& in, Target& out) {
+    report_.frame_started();
+    check_frame(in, out);
+    if (backend_.resize(in.width(), in.height())) {
+      backend_.allocate(illumination_, 3, "wavelet illumination");
+      backend_.allocate(luma_, 1, "wavelet luma");
+      backend_.allocate(spread_, 1, "wavelet spread");
+      backend_.allocate(deviation_, 1, "wavelet deviation");
+      backend_.allocate(signal_[0], 3, "wavelet signal 0");
+      backend_.allocate(signal_[1], 3, "wavelet signal 1");
+    }
+    auto& engine = backend_.engine();
+    backend_.begin_frame(in, out);
+    WaveletFrameBuffers b;
+    b.in = backend_.inputs(in);
+    b.illumination = backend_.rgb(illumination_);
+    b.luma = backend_.plane(luma_, 0);
+    b.spread = backend_.plane(spread_, 0);
+    b.deviation = backend_.plane(deviation_, 0);
+    b.signal[0] = backend_.rgb(signal_[0]);
+    b.signal[1] = backend_.rgb(signal_[1]);
+    b.output = backend_.output(out);
+#if defined(__CUDACC__)
+    if (mode_ == Mode::Fast)
+      run_wavelet_frame<FastArith>(engine, b, params_);
+    else
+#endif
+      run_wavelet_frame<ExactArith>(engine, b, params_);
+    backend_.finish(in, out);  // the host path waits here, the device path does not
+    report_.frame_done(engine);
+  }
+
   WaveletParams params_;
   Mode mode_;
   Backend backend_;
   typename Backend::Buffer illumination_, luma_, spread_, deviation_, signal_[2];
-  FrameReport report_;
+  LastReport report_;
 };
 
 }  // namespace svgf
