@@ -48,7 +48,8 @@ for tool in memcheck racecheck initcheck; do
   [ "$tool" = memcheck ] && extra=(--leak-check full)
   LD_LIBRARY_PATH="$lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" timeout 200 \
     "$sanitizer" --tool "$tool" "${extra[@]}" --error-exitcode 99 \
-    .gpu/tests/bin/svgf_gpu_tests --reduced '~[cuda-errors]~[bench]' >"$logs/$tool.txt" 2>&1
+    .gpu/tests/bin/svgf_gpu_tests --reduced '~[cuda-errors]~[bench]~[timing]' \
+    >"$logs/$tool.txt" 2>&1
   rc=$?
   LD_LIBRARY_PATH="$lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" timeout 200 \
     "$sanitizer" --tool "$tool" "${extra[@]}" --error-exitcode 99 \
