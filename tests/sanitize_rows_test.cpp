@@ -143,8 +143,9 @@ TEST_CASE("cpu rows: sanitize rows equal the per-pixel kernel bitwise, tallies i
       for (int mask = 0; mask < 8; ++mask) {
         const Planes with{(mask & 1) != 0, (mask & 2) != 0, (mask & 4) != 0};
         const std::string what = std::to_string(w) + "x" + std::to_string(h) + ", bad share " +
-                                 std::to_string(bad) + ", emission " + std::to_string(with.emission) +
-                                 ", position " + std::to_string(with.position) + ", split " +
+                                 std::to_string(bad) + ", emission " +
+                                 std::to_string(with.emission) + ", position " +
+                                 std::to_string(with.position) + ", split " +
                                  std::to_string(with.split);
         const SanitizeInputs scan{w, planes_in(in, with), {}};
         const Tallies expected = cpu::tally_pixels(w, h, scan);
@@ -155,7 +156,8 @@ TEST_CASE("cpu rows: sanitize rows equal the per-pixel kernel bitwise, tallies i
         int variants = 0;
         for (const cpu::CpuVariant* v : cpu::built_variants()) {
           if (!cpu::runs_here(*v)) continue;
-          require_same_tallies(v->sanitize_rows(scan, w, h), expected, what + ", scan on " + v->name);
+          require_same_tallies(v->sanitize_rows(scan, w, h), expected,
+                               what + ", scan on " + v->name);
           Image got = in;
           const Tallies written = v->sanitize_rows(repairing(got, with), w, h);
           require_same_tallies(written, expected, what + ", repair on " + v->name);
