@@ -50,6 +50,9 @@ SVGF_HD float sanitize_radiance(float v, bool& replaced) {
   replaced = replaced || !ok;
   return ok ? v : 0.f;
 }
+// Whether sanitize_radiance leaves every component of c as it is (& not &&: no branch, so a
+// vector loop can test it, kernels_cpu/sanitize_rows.cpp).
+SVGF_HD bool radiance_ok(Vec3 c) { return radiance_ok(c.x) & radiance_ok(c.y) & radiance_ok(c.z); }
 SVGF_HD Vec3 sanitize_radiance(Vec3 c, bool& replaced) {
   return make_vec3(sanitize_radiance(c.x, replaced), sanitize_radiance(c.y, replaced),
                    sanitize_radiance(c.z, replaced));

@@ -29,6 +29,7 @@
 #include "core/sanitize.h"
 #include "core/stage_times.h"
 #include "kernels_cpu/cpu_engine.h"
+#include "kernels_cpu/sanitize_rows.h"
 
 // Compiled outside the variants (not in this project): the includer's own flags.
 #if !defined(SVGF_CPU_VARIANT_NAME)

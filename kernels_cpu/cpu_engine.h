@@ -2,7 +2,8 @@
 // The CPU engine: runs a method's pixel kernels inside the denoiser's task arena (its thread
 // count) and times each stage with a steady clock. Method-neutral: a kernel runs through
 // cpu::PixelDriver<Kernel>, which is for_each_pixel unless a method's CPU driver specializes it
-// (kernels_cpu/svgf_rows.h: the vectorized rows of SVGF's two wide stages, same bits).
+// (kernels_cpu/svgf_rows.h: the vectorized rows of SVGF's two wide stages, same bits;
+// kernels_cpu/sanitize_rows.h: the backend's input scan).
 #include <chrono>
 #include <cstdint>
 
@@ -15,11 +16,15 @@
 
 namespace svgf::cpu {
 
-// How the CPU runs a kernel: one call per pixel, TBB over rows.
+// How the CPU runs a kernel: one call per pixel, TBB over rows; tally() for a kernel returning
+// a bit mask (run_tallying).
 template <class Kernel, class = void>
 struct PixelDriver {
   static void run(const Kernel& kernel, int width, int height) {
     for_each_pixel(width, height, kernel);
+  }
+  static Tallies tally(const Kernel& kernel, int width, int height) {
+    return tally_pixels(width, height, kernel);
   }
 };
 
@@ -50,7 +55,7 @@ class CpuEngine {
   void run_tallying(const char* stage, const Kernel& kernel, int width, int height) {
     const auto t0 = std::chrono::steady_clock::now();
     Tallies t;
-    arena_.execute([&] { t = tally_pixels(width, height, kernel); });
+    arena_.execute([&] { t = PixelDriver<Kernel>::tally(kernel, width, height); });
     tallies_ += t;
     times_.add(stage, elapsed_ms(t0));
   }

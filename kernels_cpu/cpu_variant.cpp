@@ -10,6 +10,7 @@
 #include "kernels_cpu/bmfr_cpu.h"
 #include "kernels_cpu/gaussian_cpu.h"
 #include "kernels_cpu/jbf_cpu.h"
+#include "kernels_cpu/sanitize_rows.h"
 #include "kernels_cpu/svgf_cpu.h"
 #include "kernels_cpu/svgf_rows.h"
 #include "kernels_cpu/wavelet_cpu.h"
@@ -173,6 +174,9 @@ void run_wavelet_rows(const WaveletExactIteration& kernel, int width, int height
 }
 void run_jbf_rows(const JbfPass<ExactArith>& kernel, int width, int height) {
   pick_variant("").jbf_rows(kernel, width, height);
+}
+Tallies run_sanitize_rows(const SanitizeInputs& kernel, int width, int height) {
+  return pick_variant("").sanitize_rows(kernel, width, height);
 }
 
 }  // namespace svgf::cpu

@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "core/denoiser.h"
+#include "core/sanitize.h"
+#include "core/tallies.h"
 #include "kernels_cpu/jbf_rows.h"
 #include "kernels_cpu/wavelet_rows.h"
 #include "methods/bmfr/params.h"
@@ -42,6 +44,7 @@ struct CpuVariant {
   void (*gradient_atrous_rows)(const GradientAtrousKernel&, int, int);
   void (*wavelet_rows)(const WaveletExactIteration&, int, int);
   void (*jbf_rows)(const JbfPass<ExactArith>&, int, int);
+  Tallies (*sanitize_rows)(const SanitizeInputs&, int, int);
 };
 
 // The variants this build has, narrowest first.

@@ -6,6 +6,7 @@
 #include "kernels_cpu/cpu_variant.h"
 #include "kernels_cpu/gaussian_cpu.h"
 #include "kernels_cpu/jbf_cpu.h"
+#include "kernels_cpu/sanitize_rows.h"
 #include "kernels_cpu/svgf_cpu.h"
 #include "kernels_cpu/svgf_rows.h"
 #include "kernels_cpu/wavelet_cpu.h"
@@ -67,7 +68,7 @@ const CpuVariant kVariant = {SVGF_CPU_VARIANT_ID, SVGF_CPU_VARIANT_NAME, kNeeds,
                              make_svgf_denoiser,  make_gaussian_denoiser, make_wavelet_denoiser,
                              make_jbf_denoiser,   make_bmfr_denoiser,     run_atrous_rows,
                              run_variance_rows,   run_reproject_rows,     run_gradient_atrous_rows,
-                             run_wavelet_rows,    run_jbf_rows};
+                             run_wavelet_rows,    run_jbf_rows,           run_sanitize_rows};
 
 }  // namespace
 }  // namespace svgf::cpu
