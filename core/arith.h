@@ -24,6 +24,10 @@ struct ExactArith {
   SVGF_HD static float max(float a, float b) { return max_f(a, b); }
   SVGF_HD static float min(float a, float b) { return min_f(a, b); }
   SVGF_HD static float abs(float a) { return abs_f(a); }
+  // |a| by clearing the sign bit (one vector AND; abs is a compare and a select). It differs from
+  // abs only in the sign of -0 and of NaN, for terms that a max(., 0) clamps next, which erases
+  // both: the same bits there.
+  SVGF_HD static float abs_before_clamp(float a) { return fabsf(a); }
   // Clamped to [0, 1]; NaN stays NaN (it zeroes the weight it enters).
   SVGF_HD static float saturate(float a) { return min_f(1.f, max_f(0.f, a)); }
   SVGF_HD static float exp_nonpositive(float x) { return det_exp_nonpositive(x); }
@@ -89,6 +93,7 @@ struct FastArith {
   __device__ __forceinline__ static float max(float a, float b) { return fmaxf(a, b); }
   __device__ __forceinline__ static float min(float a, float b) { return fminf(a, b); }
   __device__ __forceinline__ static float abs(float a) { return fabsf(a); }
+  __device__ __forceinline__ static float abs_before_clamp(float a) { return fabsf(a); }
   // Clamped to [0, 1] by the .SAT modifier of the instruction that computes `a` (free); NaN
   // gives 0.
   __device__ __forceinline__ static float saturate(float a) { return __saturatef(a); }

@@ -48,10 +48,11 @@ SVGF_HD Vec3 max_v(Vec3 a, Vec3 b) {
 
 // floor for |x| < 2^31 through truncation, exact like floorf. Unlike floorf it vectorizes under
 // GCC's default -ftrapping-math (which keeps libm's floorf a call) and needs no libm on device.
-SVGF_HD float floor_small(float x) {
+SVGF_HD int floor_small_int(float x) {
   const int t = static_cast<int>(x);  // toward zero
-  return static_cast<float>(t - (static_cast<float>(t) > x ? 1 : 0));
+  return t - (static_cast<float>(t) > x ? 1 : 0);
 }
+SVGF_HD float floor_small(float x) { return static_cast<float>(floor_small_int(x)); }
 
 // x - x is 0 for finite x and NaN for NaN and +-Inf, with no library call (isfinite is not
 // reliably available on both sides without including <cmath> into device code).

@@ -7,6 +7,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "core/arith.h"
 #include "core/det_math.h"
 
 using namespace svgf;
@@ -162,5 +163,24 @@ TEST_CASE("det_acos gives the bits of its branching form", "[det_math]") {
     }
   INFO(checked << " values");
   REQUIRE(checked > 30000000);
+  REQUIRE(differing == 0);
+}
+
+// The edge-stopping weight takes |x| as a sign-bit clear (abs_before_clamp) where a max(., 0)
+// clamp follows: that must give abs_f's bits after the clamp, -0 and NaN of either sign included.
+TEST_CASE("abs_before_clamp then max(., 0) gives abs's bits", "[det_math]") {
+  const float inf = std::numeric_limits<float>::infinity();
+  const float scales[] = {0.f, -0.f, 1.f, 3.7f, -2.f, 1e-30f, 1e30f, inf, -inf,
+                          std::numeric_limits<float>::quiet_NaN()};
+  uint64_t differing = 0, n = 0;
+  for (uint64_t b = 0; b <= 0xffffffffull; b += 4099, ++n) {
+    for (const uint32_t sign : {0u, 0x80000000u}) {  // both signs of each magnitude (and NaN)
+      const float x = bits_float(static_cast<uint32_t>(b) ^ sign);
+      for (const float s : scales)
+        differing += float_bits(max_f(ExactArith::abs_before_clamp(x) * s, 0.f)) !=
+                     float_bits(max_f(abs_f(x) * s, 0.f));
+    }
+  }
+  CHECK(n > 1000000u);
   REQUIRE(differing == 0);
 }

@@ -27,9 +27,10 @@ template <class Arith = ExactArith, class Power>
 SVGF_HD float edge_stopping_weight(const EdgeSample& c, const EdgeSample& q, float inv_phi_z,
                                    const Power& normal_power, float inv_phi_l) {
   const float w_normal = normal_power(normal_cosine<Arith>(c.normal, q.normal));
-  const float e_depth = Arith::abs(c.depth - q.depth) * inv_phi_z;
-  const float e_lum = Arith::abs(c.luminance - q.luminance) * inv_phi_l;
-  // The argument is <= 0 (or -0): both terms are clamped to >= 0 first.
+  const float e_depth = Arith::abs_before_clamp(c.depth - q.depth) * inv_phi_z;
+  const float e_lum = Arith::abs_before_clamp(c.luminance - q.luminance) * inv_phi_l;
+  // The argument is <= 0 (or -0): both terms are clamped to >= 0 first (which also takes -0 and
+  // NaN to 0, whatever their sign, hence abs_before_clamp).
   const float w = Arith::exp_neg_sum(Arith::max(e_lum, 0.f), Arith::max(e_depth, 0.f)) * w_normal;
   return Arith::positive_part(w);
 }
