@@ -198,7 +198,9 @@ class CudaBackend {
       for (int c = 0; c < channels; ++c)
         copy.add(StridedCopy::from_view(v, c, plane_of(c), width_));
     };
-    auto input = [this](int first) { return [this, first](int c) { return input_plane(first + c); }; };
+    auto input = [this](int first) {
+      return [this, first](int c) { return input_plane(first + c); };
+    };
     add(in.depth, 1, input(kDepth));
     add(in.depth_gradient, 2, input(kDepthDx));
     add(in.normal, 3, input(kNormal));

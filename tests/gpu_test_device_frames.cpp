@@ -241,7 +241,8 @@ void require_same_report(const FrameReport& host, const FrameReport& device,
 }
 
 // Bitwise (NaN compares unequal to itself, and the interleaved spares are NaN).
-bool same_bytes(const std::vector<std::vector<float>>& a, const std::vector<std::vector<float>>& b) {
+bool same_bytes(const std::vector<std::vector<float>>& a,
+                const std::vector<std::vector<float>>& b) {
   if (a.size() != b.size()) return false;
   for (size_t k = 0; k < a.size(); ++k)
     if (a[k].size() != b[k].size() ||
@@ -299,7 +300,8 @@ TEST_CASE("device frames: the same bits as host frames, every method, mode and l
             const auto before = in.contents();
             device->denoise_device(in.frame(), out.view(), stream.get());
             cuda::check(cudaStreamSynchronize(stream.get()), "cudaStreamSynchronize");
-            test::require_identical(expected, out.image(), where + ": output (host vs device path)");
+            test::require_identical(expected, out.image(),
+                                    where + ": output (host vs device path)");
             for (const std::string& name : host->debug_buffers())
               test::require_identical(host->read_buffer(name), device->read_buffer(name),
                                       where + ": " + name);
