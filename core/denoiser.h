@@ -170,6 +170,28 @@ inline void check_frame(const DeviceFrame& f, const DeviceTarget& out) {
   check_device_frame(f, out.image);
 }
 
+// A method's two entry points, written once: Derived (the method's denoiser over Backend) has
+//   template <class Source, class Target> void denoise_frame(const Source&, Target&);
+// over Frame / Image, and over DeviceFrame / DeviceTarget where Backend::kDeviceFrames; a
+// backend without device frames refuses them (device_frames_unsupported).
+template <class Derived, class Backend>
+class DenoiserOver : public Denoiser {
+ public:
+  void denoise(const Frame& in, Image& out) final { self().denoise_frame(in, out); }
+  void denoise_device(const DeviceFrame& in, const DeviceOutputView& out,
+                      void* cuda_stream) final {
+    if constexpr (Backend::kDeviceFrames) {
+      DeviceTarget target{out, cuda_stream};
+      self().denoise_frame(in, target);
+    } else {
+      throw device_frames_unsupported(description());
+    }
+  }
+
+ private:
+  Derived& self() { return static_cast<Derived&>(*this); }
+};
+
 inline std::invalid_argument unknown_buffer(std::string_view method, std::string_view name,
                                             const std::vector<std::string>& known) {
   std::string list;

@@ -11,6 +11,7 @@
 
 #include <cuda_runtime.h>
 
+#include "core/rare_path.h"
 #include "kernels_cuda/cuda_block.cuh"
 #include "kernels_cuda/cuda_check.h"
 #include "kernels_cuda/cuda_engine.h"
@@ -27,6 +28,28 @@ __global__ void pixel_kernel(const K k, int width, int height) {
   const int x = device::pixel_x();
   const int y = device::pixel_y();
   if (x < width && y < height) k(x, y);
+}
+
+// For kernels with a rare path (core/rare_path.h): every thread tries the common path; the
+// block's rare pixels are listed in shared memory (rare_pixels: one int per thread of the block)
+// and taken by the block's first threads, so the expensive path fills whole warps.
+template <class K>
+__global__ void compacting_pixel_kernel(const K k, int width, int height) {
+  extern __shared__ int rare_pixels[];
+  __shared__ int rare_count;
+  const int t = static_cast<int>(threadIdx.y * blockDim.x + threadIdx.x);
+  if (t == 0) rare_count = 0;
+  __syncthreads();
+  const int x = device::pixel_x();
+  const int y = device::pixel_y();
+  if (x < width && y < height && !k.common_path(x, y)) rare_pixels[atomicAdd(&rare_count, 1)] = t;
+  __syncthreads();
+  if (t < rare_count) {
+    const int s = rare_pixels[t];
+    const int bx = static_cast<int>(blockDim.x);
+    k.rare_path(static_cast<int>(blockIdx.x) * bx + s % bx,
+                static_cast<int>(blockIdx.y * blockDim.y) + s / bx);
+  }
 }
 
 // For kernels returning bool: counts the pixels that returned true.
@@ -71,7 +94,12 @@ void launch(const K& k, int width, int height, LaunchShape shape, cudaStream_t s
       return;
     }
   }
-  pixel_kernel<K><<<g.grid, g.block, 0, stream>>>(k, width, height);
+  if constexpr (HasRarePath<K>::value) {
+    const size_t list_bytes = sizeof(int) * g.block.x * g.block.y;
+    compacting_pixel_kernel<K><<<g.grid, g.block, list_bytes, stream>>>(k, width, height);
+  } else {
+    pixel_kernel<K><<<g.grid, g.block, 0, stream>>>(k, width, height);
+  }
   check_launch(what, g);
 }
 

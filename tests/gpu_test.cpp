@@ -215,14 +215,70 @@ TEST_CASE("stage reproject: CPU vs CUDA bitwise on random input", "[stage]") {
       }
 }
 
+// The GPU runs the young pixels' 7x7 estimate on compacted threads (core/rare_path.h): half,
+// none and all of the pixels young.
 TEST_CASE("stage variance: CPU vs CUDA bitwise on random input", "[stage]") {
-  for (Size s : sizes())
-    for (cuda::LaunchShape b : shapes()) {
-      Arena a(s.w, s.h, 24);
-      Random r(37u + static_cast<uint32_t>(s.w * 3));
-      const VarianceKernel k = random_variance_kernel(a, r, 0.5, 0.f);
-      r.fill(k.out.color.r, 4 * a.pixels(), 7.f, 8.f);
-      check_stage(a, k, label("variance", s, b), b);
+  for (double young : {0.5, 0.0, 1.0})
+    for (Size s : sizes())
+      for (cuda::LaunchShape b : shapes()) {
+        Arena a(s.w, s.h, 24);
+        Random r(37u + static_cast<uint32_t>(s.w * 3));
+        const VarianceKernel k = random_variance_kernel(a, r, young, 0.f);
+        r.fill(k.out.color.r, 4 * a.pixels(), 7.f, 8.f);
+        check_stage(a, k, label("variance", s, b, ", young share " + std::to_string(young)), b);
+      }
+}
+
+namespace {
+
+// A kernel with a rare path: pixels flagged rare get -1 - i, the others i + 1, each added to
+// what `out` held (0), so a pixel run twice, or by both paths, shows.
+struct RareFlaggedKernel {
+  int width;
+  const uint8_t* rare;
+  float* out;
+  SVGF_HD bool common_path(int x, int y) const {
+    const int i = y * width + x;
+    if (rare[i]) return false;
+    out[i] = out[i] + static_cast<float>(i + 1);
+    return true;
+  }
+  SVGF_HD void rare_path(int x, int y) const {
+    const int i = y * width + x;
+    out[i] = out[i] - static_cast<float>(i + 1);
+  }
+  SVGF_HD void operator()(int x, int y) const {
+    if (!common_path(x, y)) rare_path(x, y);
+  }
+};
+
+}  // namespace
+
+TEST_CASE("launcher: a kernel's rare path runs once for each rare pixel, on every block shape",
+          "[launch]") {
+  static_assert(HasRarePath<RareFlaggedKernel>::value, "the launcher must see the rare path");
+  static_assert(!HasRarePath<AtrousKernel>::value, "a plain kernel has none");
+  const int w = 75, h = 41;
+  const size_t n = static_cast<size_t>(w) * h;
+  for (double share : {0.0, 0.3, 1.0})
+    for (cuda::LaunchShape b : std::vector<cuda::LaunchShape>{{32, 8}, {13, 7}, {1, 1}, {32, 32},
+                                                              {64, 1}}) {
+      Random r(5u);
+      std::vector<uint8_t> rare(n);
+      for (auto& f : rare) f = r.chance(share) ? 1 : 0;
+      cuda::DeviceArray<uint8_t> d_rare(rare.data(), n);
+      const std::vector<float> zeros(n, 0.f);
+      cuda::DeviceArray<float> d_out(zeros.data(), n);
+      cuda::run(RareFlaggedKernel{w, d_rare.get(), d_out.get()}, w, h, b, "rare flagged");
+      const std::vector<float> out = d_out.to_host();
+      size_t bad = 0;
+      for (size_t i = 0; i < n; ++i) {
+        const float want = (rare[i] ? -1.f : 1.f) * static_cast<float>(i + 1);
+        if (out[i] != want && bad++ < 5)
+          UNSCOPED_INFO("pixel " << i << ": " << out[i] << ", expected " << want);
+      }
+      INFO("share " << share << ", block " << b.block_x << "x" << b.block_y);
+      REQUIRE(bad == 0);
     }
 }
 

@@ -140,23 +140,12 @@ void run_bmfr_frame(Engine& engine, const BmfrFrameBuffers& b, const BmfrParams&
 }
 
 template <class Backend>
-class BmfrDenoiser final : public Denoiser {
+class BmfrDenoiser final : public DenoiserOver<BmfrDenoiser<Backend>, Backend> {
  public:
   BmfrDenoiser(const BmfrParams& params, const EngineConfig& config)
       : params_(params), mode_(config.mode), backend_(config) {
     params_.validate();
     backend_.set_method_planes(2 * history_planes() + frame_data_planes() + 1);  // + blocks
-  }
-
-  void denoise(const Frame& in, Image& out) override { denoise_frame(in, out); }
-  void denoise_device(const DeviceFrame& in, const DeviceOutputView& out,
-                      void* cuda_stream) override {
-    if constexpr (Backend::kDeviceFrames) {
-      DeviceTarget target{out, cuda_stream};
-      denoise_frame(in, target);
-    } else {
-      throw device_frames_unsupported(description());
-    }
   }
 
   void reset() override { has_history_ = false; }
@@ -199,6 +188,7 @@ class BmfrDenoiser final : public Denoiser {
   }
 
  private:
+  friend class DenoiserOver<BmfrDenoiser<Backend>, Backend>;  // calls denoise_frame
   // One frame, either path: a Frame into an Image, or a DeviceFrame into a DeviceTarget (the
   // backend's overloads move the data; the frame is the same).
   template <class Source, class Target>

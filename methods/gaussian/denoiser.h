@@ -35,23 +35,12 @@ void run_gaussian_frame(Engine& engine, ConstRgbView color, RgbView blurred, Rgb
 }
 
 template <class Backend>
-class GaussianDenoiser final : public Denoiser {
+class GaussianDenoiser final : public DenoiserOver<GaussianDenoiser<Backend>, Backend> {
  public:
   GaussianDenoiser(const GaussianParams& params, const EngineConfig& config)
       : params_(params), mode_(config.mode), backend_(config) {
     params_.validate();
     backend_.set_method_planes(3);
-  }
-
-  void denoise(const Frame& in, Image& out) override { denoise_frame(in, out); }
-  void denoise_device(const DeviceFrame& in, const DeviceOutputView& out,
-                      void* cuda_stream) override {
-    if constexpr (Backend::kDeviceFrames) {
-      DeviceTarget target{out, cuda_stream};
-      denoise_frame(in, target);
-    } else {
-      throw device_frames_unsupported(description());
-    }
   }
 
   void reset() override {}  // no history
@@ -68,6 +57,7 @@ class GaussianDenoiser final : public Denoiser {
   }
 
  private:
+  friend class DenoiserOver<GaussianDenoiser<Backend>, Backend>;  // calls denoise_frame
   // One frame, either path: a Frame into an Image, or a DeviceFrame into a DeviceTarget (the
   // backend's overloads move the data; the frame is the same).
   template <class Source, class Target>

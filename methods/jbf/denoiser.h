@@ -76,23 +76,12 @@ void run_jbf_frame(Engine& engine, const JbfFrameBuffers& b, const JbfParams& p,
 }
 
 template <class Backend>
-class JbfDenoiser final : public Denoiser {
+class JbfDenoiser final : public DenoiserOver<JbfDenoiser<Backend>, Backend> {
  public:
   JbfDenoiser(const JbfParams& params, const EngineConfig& config)
       : params_(params), mode_(config.mode), backend_(config) {
     params_.validate();
     backend_.set_method_planes(3 + 6 + (params_.atrous() ? 6 : 0));
-  }
-
-  void denoise(const Frame& in, Image& out) override { denoise_frame(in, out); }
-  void denoise_device(const DeviceFrame& in, const DeviceOutputView& out,
-                      void* cuda_stream) override {
-    if constexpr (Backend::kDeviceFrames) {
-      DeviceTarget target{out, cuda_stream};
-      denoise_frame(in, target);
-    } else {
-      throw device_frames_unsupported(description());
-    }
   }
 
   void reset() override { has_history_ = false; }
@@ -120,6 +109,7 @@ class JbfDenoiser final : public Denoiser {
   }
 
  private:
+  friend class DenoiserOver<JbfDenoiser<Backend>, Backend>;  // calls denoise_frame
   // One frame, either path: a Frame into an Image, or a DeviceFrame into a DeviceTarget (the
   // backend's overloads move the data; the frame is the same).
   template <class Source, class Target>

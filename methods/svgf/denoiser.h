@@ -18,24 +18,13 @@
 namespace svgf {
 
 template <class Backend>
-class SvgfDenoiser final : public Denoiser {
+class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
  public:
   SvgfDenoiser(const SvgfParams& params, const EngineConfig& config)
       : params_(params), mode_(config.mode), backend_(config) {
     params_.validate();
     backend_.set_method_planes(2 * (3 + 2 + 1 + 4) + 3 + 4 + (mode_ == Mode::Fast ? 4 : 0) +
                                (gradient_mode() ? 1 : 0) + (params_.taa ? 3 * 3 : 0));
-  }
-
-  void denoise(const Frame& in, Image& out) override { denoise_frame(in, out); }
-  void denoise_device(const DeviceFrame& in, const DeviceOutputView& out,
-                      void* cuda_stream) override {
-    if constexpr (Backend::kDeviceFrames) {
-      DeviceTarget target{out, cuda_stream};
-      denoise_frame(in, target);
-    } else {
-      throw device_frames_unsupported(description());
-    }
   }
 
   void reset() override { has_history_ = false; }
@@ -66,6 +55,7 @@ class SvgfDenoiser final : public Denoiser {
   }
 
  private:
+  friend class DenoiserOver<SvgfDenoiser<Backend>, Backend>;  // calls denoise_frame
   // One frame, either path: `in` a Frame (host) or a DeviceFrame, `out` an Image or a
   // DeviceTarget; the backend's overloads move the data, the frame below is the same.
   template <class Source, class Target>
@@ -115,7 +105,6 @@ class SvgfDenoiser final : public Denoiser {
     split_history_ = split;
     report_.frame_done(engine);
   }
-
 
   bool gradient_mode() const { return params_.antilag == Antilag::Gradient; }
 

@@ -7,6 +7,7 @@
 #include "methods/svgf/edge_stopping.h"
 #include "methods/svgf/flavors.h"
 #include "methods/svgf/params.h"
+#include "core/rare_path.h"
 #include "core/views.h"
 
 namespace svgf {
@@ -48,14 +49,28 @@ struct VarianceEstimate {
   SvgfParams params;
 
   SVGF_HD void operator()(int x, int y) const {
+    if (!common_path(x, y)) rare_path(x, y);
+  }
+
+  // A history old enough (or no surface): the temporal variance passes through. The GPU runs the
+  // rare path below on compacted threads (core/rare_path.h).
+  SVGF_HD bool common_path(int x, int y) const {
+    const int i = guides.index(x, y);
+    const float h = history[i];
+    if (h < static_cast<float>(params.spatial_variance_history) &&
+        guides.depth_normal(i).depth > 0.f)
+      return false;
+    out.store(i, make_color_var(accumulated.color.load(i),
+                                temporal_variance(params, accumulated.variance[i], h)));
+    return true;
+  }
+
+  // A young history on a surface: the 7x7 bilateral estimate.
+  SVGF_HD void rare_path(int x, int y) const {
     const int i = guides.index(x, y);
     const float h = history[i];
     const Vec3 center_color = accumulated.color.load(i);
     const DepthNormal gc = guides.depth_normal(i);
-    if (!(h < static_cast<float>(params.spatial_variance_history)) || !(gc.depth > 0.f)) {
-      out.store(i, make_color_var(center_color, temporal_variance(params, accumulated.variance[i], h)));
-      return;
-    }
     const EdgeSample c{gc.depth, gc.normal, luminance_with<Arith>(center_color)};
     const float inv_phi_z = inv_depth_tolerance<Arith>(
         params.spatial_variance_phi_depth, guides.depth_fwidth(i), params.depth_gradient_floor);

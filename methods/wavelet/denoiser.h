@@ -87,23 +87,12 @@ void run_wavelet_frame(Engine& engine, const WaveletFrameBuffers& b, const Wavel
 }
 
 template <class Backend>
-class WaveletDenoiser final : public Denoiser {
+class WaveletDenoiser final : public DenoiserOver<WaveletDenoiser<Backend>, Backend> {
  public:
   WaveletDenoiser(const WaveletParams& params, const EngineConfig& config)
       : params_(params), mode_(config.mode), backend_(config) {
     params_.validate();
     backend_.set_method_planes(3 + 1 + 1 + 1 + 2 * 3);
-  }
-
-  void denoise(const Frame& in, Image& out) override { denoise_frame(in, out); }
-  void denoise_device(const DeviceFrame& in, const DeviceOutputView& out,
-                      void* cuda_stream) override {
-    if constexpr (Backend::kDeviceFrames) {
-      DeviceTarget target{out, cuda_stream};
-      denoise_frame(in, target);
-    } else {
-      throw device_frames_unsupported(description());
-    }
   }
 
   void reset() override {}  // no history
@@ -136,6 +125,7 @@ class WaveletDenoiser final : public Denoiser {
   }
 
  private:
+  friend class DenoiserOver<WaveletDenoiser<Backend>, Backend>;  // calls denoise_frame
   // One frame, either path: a Frame into an Image, or a DeviceFrame into a DeviceTarget (the
   // backend's overloads move the data; the frame is the same).
   template <class Source, class Target>
