@@ -26,8 +26,9 @@ struct SvgfExact {
   using ConstSignal = ConstIllumVarView;
   // Every stage is its own pass (so each can be timed, read back and compared alone).
   static constexpr bool kFused = false;
-  // The a-trous taps as one loop with bounds tests (a second, test-free copy for interior
-  // pixels made the exact kernel larger and slower on the H100).
+  // The a-trous and spatial-variance taps as one loop with bounds tests (a second, test-free
+  // copy for interior pixels made the exact kernels larger and slower: the a-trous on the H100,
+  // the variance on the H200).
   static constexpr bool kSplitInterior = false;
   template <class Body>
   static void with_normal_power(float phi_normal, const Body& body) {
@@ -44,7 +45,8 @@ struct SvgfFast {
   // Demodulate + reproject + guide packing in one launch; the feedback copy and the
   // remodulation ride on the a-trous iterations that produce them.
   static constexpr bool kFused = true;
-  // Interior pixels (5x5 footprint inside the image) skip the 24 bounds tests.
+  // Interior pixels (footprint inside the image) skip the bounds tests: the a-trous's 24, the
+  // variance's 48 (its default 7x7 unrolled).
   static constexpr bool kSplitInterior = true;
   template <class Body>
   static void with_normal_power(float phi_normal, const Body& body) {
