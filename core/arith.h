@@ -62,10 +62,18 @@ struct ExactArith {
     return inv_phi_z * (1.f / sqrtf(fx * fx + fy * fy));
   }
   // The same in a fully unrolled 5x5 tap loop (dx, dy known at compile time), in two parts:
-  // once per pixel, then per tap. Exact mode keeps the one expression above.
+  // once per pixel, then per tap. For a power-of-two step (every a-trous step) the scale above
+  // is exactly inv_phi_z * ((1 / sqrt(dx^2 + dy^2)) * (1 / step)): the step multiplies the sum
+  // by a power of four, the root by a power of two and the reciprocal by its inverse, and IEEE
+  // rounding commutes with such scalings (no overflow or underflow at these sizes). Constant
+  // dx, dy make the first factor a compile-time constant, so a tap costs one multiply instead
+  // of an IEEE square root and division (tests/det_math_test.cpp checks the bits for every tap
+  // and step). Other steps keep the full expression.
   SVGF_HD static float pixel_depth_scale(float inv_phi_z, int) { return inv_phi_z; }
   SVGF_HD static float tap_depth_scale_unrolled(float pixel_scale, int dx, int dy, int step) {
-    return tap_depth_scale(pixel_scale, dx, dy, step);
+    if ((step & (step - 1)) != 0) return tap_depth_scale(pixel_scale, dx, dy, step);
+    const float inv_distance = 1.f / sqrtf(static_cast<float>(dx * dx + dy * dy));
+    return pixel_scale * (inv_distance * (1.f / static_cast<float>(step)));
   }
 };
 

@@ -184,3 +184,22 @@ TEST_CASE("abs_before_clamp then max(., 0) gives abs's bits", "[det_math]") {
   CHECK(n > 1000000u);
   REQUIRE(differing == 0);
 }
+
+// The unrolled a-trous taps scale 1 / phi_z by a factored tap distance (ExactArith::
+// tap_depth_scale_unrolled): for every tap of the 5x5 footprint, every power-of-two step up to
+// 2^12 and 1 / phi_z across the floats (signed zeros, subnormals, Inf, NaN), it must give the
+// full expression's bits. A step that is not a power of two takes the full expression.
+TEST_CASE("tap_depth_scale_unrolled gives tap_depth_scale's bits", "[det_math]") {
+  uint64_t differing = 0, n = 0;
+  for (int step : {1, 2, 4, 8, 16, 32, 64, 128, 256, 512, 1024, 2048, 4096, 3, 6, 12})
+    for (int dy = -2; dy <= 2; ++dy)
+      for (int dx = -2; dx <= 2; ++dx)
+        for (uint64_t b = 0; b <= 0xffffffffull; b += 65537) {
+          const float s = bits_float(static_cast<uint32_t>(b));
+          ++n;
+          differing += float_bits(ExactArith::tap_depth_scale_unrolled(s, dx, dy, step)) !=
+                       float_bits(ExactArith::tap_depth_scale(s, dx, dy, step));
+        }
+  CHECK(n > 20000000u);
+  REQUIRE(differing == 0);
+}
