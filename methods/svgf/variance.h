@@ -96,7 +96,7 @@ struct VarianceEstimate {
   }
 
  private:
-  static constexpr int kDefaultRadius = 3;  // SvgfParams::spatial_variance_radius
+  static constexpr int kDefaultRadius = SvgfParams{}.spatial_variance_radius;
   struct Sums {
     float weight = 0.f;
     Vec3 color;
