@@ -69,6 +69,9 @@ void MethodParamFlags::add_to(CLI::App& app) {
   flag("variance-of-mean", "on|off", svgf,
        "filter with the accumulated mean's variance (default on)",
        [](DenoiserConfig& c, bool v) { c.svgf.variance_of_mean = v; })->check(on_off);
+  flag("camera-depth", "on|off", svgf,
+       "reprojection: compare depths in the previous frame's camera (default on)",
+       [](DenoiserConfig& c, bool v) { c.svgf.reproject_camera_depth = v; })->check(on_off);
   flag("svgf-taa", "on|off", svgf, "temporal anti-aliasing after remodulation (default off)",
        [](DenoiserConfig& c, bool v) { c.svgf.taa = v; })->check(on_off);
   flag("svgf-taa-alpha", "A", svgf, "its blend toward the new frame (default 0.1)",

@@ -160,6 +160,7 @@ class DeviceCopy {
  public:
   explicit DeviceCopy(const Frame& f) : frame_(f.width(), f.height()) {
     frame_.index = f.index;
+    frame_.camera = f.camera;
     frame_.color = put(f.color.data(), f.color);
     frame_.albedo = put(f.albedo.data(), f.albedo);
     frame_.normal = put(f.normal.data(), f.normal);

@@ -11,6 +11,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/camera.h"
+
 namespace svgf {
 
 // Channels of 32-bit values (float; mesh_id: uint32) in device memory.
@@ -64,6 +66,7 @@ struct DeviceFrame {
   int height() const { return height_; }
 
   int index = 0;  // frame number within its sequence (named in errors)
+  Camera camera;  // host values; the identity when the renderer gives none
   DeviceImageView color;           // 3: noisy radiance, linear HDR
   DeviceImageView albedo;          // 3
   DeviceImageView normal;          // 3: world-space unit normal (0 on background)

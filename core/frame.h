@@ -6,18 +6,11 @@
 #include <string>
 #include <vector>
 
+#include "core/camera.h"
 #include "core/image.h"
 #include "core/views.h"
 
 namespace svgf {
-
-// Camera of a frame. Row-major 4x4 matrices acting on column vectors:
-// p_view = world_to_view * p_world, p_clip = view_to_clip * p_view. View space looks down -z
-// (OpenGL convention); linear depth is -p_view.z.
-struct Camera {
-  std::array<float, 16> world_to_view{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-  std::array<float, 16> view_to_clip{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-};
 
 constexpr int kGradientStratum = 3;  // A-SVGF strata are 3x3 pixels
 

@@ -299,6 +299,9 @@ TEST_CASE("svgf flags: --svgf-preset picks the paper's or Falcor's values, flags
   CHECK(taa.taa);
   CHECK(taa.taa_alpha == 0.25f);
   CHECK_FALSE(params({}).taa);
+  CHECK(params({}).reproject_camera_depth);  // docs/svgf.md, Reprojection under camera motion
+  CHECK_FALSE(params({"--camera-depth", "off"}).reproject_camera_depth);
+  REQUIRE_THROWS_WITH(params({"--camera-depth", "no"}), Catch::Contains("--camera-depth"));
   REQUIRE_THROWS_WITH(params({"--svgf-taa", "yes"}), Catch::Contains("--svgf-taa"));
   // Direct and indirect apart (issue 12, item 2).
   CHECK(params({}).split == SplitMode::Auto);

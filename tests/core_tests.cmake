@@ -1,6 +1,7 @@
 # Host-only tests: the deterministic math, the CPU row drivers, the test harness.
 svgf_add_tests(svgf_core_tests
-  SOURCES det_math_test.cpp svgf_cpu_rows_test.cpp svgf_cpu_reproject_rows_test.cpp
+  SOURCES det_math_test.cpp previous_depth_test.cpp svgf_cpu_rows_test.cpp
+          svgf_cpu_reproject_rows_test.cpp
           svgf_cpu_gradient_rows_test.cpp sanitize_rows_test.cpp
           wavelet_cpu_rows_test.cpp jbf_cpu_rows_test.cpp test_device_test.cpp
           metrics_lighting_change_test.cpp metrics_stability_test.cpp

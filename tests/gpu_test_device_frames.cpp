@@ -40,6 +40,7 @@ class FrameOnDevice {
  public:
   FrameOnDevice(const Frame& f, Layout layout) : frame_(f.width(), f.height()), layout_(layout) {
     frame_.index = f.index;
+    frame_.camera = f.camera;
     frame_.color = put(f.color);
     frame_.albedo = put(f.albedo);
     frame_.normal = put(f.normal);

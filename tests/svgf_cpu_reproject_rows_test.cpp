@@ -94,7 +94,7 @@ HistoryPaths history_paths(const ReprojectKernel& k) {
       int consistent = 0;
       float weight = 0.f;
       for (int t = 0; t < 4; ++t)
-        if (k.tap_consistent(i, taps.x(t), taps.y(t))) {
+        if (k.tap_consistent(i, k.depth_then(x, y, i), taps.x(t), taps.y(t))) {
           ++consistent;
           weight += taps.weight(t);
         }
@@ -173,6 +173,9 @@ TEST_CASE("cpu rows: reprojection rows equal the per-pixel kernel bitwise", "[cp
           k.params.history_cap = with_lambda ? 8 : 32;
           k.gradient_lambda = with_lambda ? lambda.plane(0) : nullptr;
           k.has_history = has_history;
+          // A moving camera's depth map (core/previous_depth.h) with the lambda cases: the
+          // previous depth about 0.5% off the current, varying over the image.
+          if (with_lambda) k.previous_depth = {1.004f, -2e-5f, 3e-5f, -0.002f, 1e-5f, 0.f};
           require_rows_equal_pixels(k, "reproject " + size_name + ", antilag " +
                                            std::to_string(int(antilag)) +
                                            (with_lambda ? ", lambda" : "") +
@@ -192,6 +195,8 @@ TEST_CASE("cpu rows: reprojection rows equal the per-pixel kernel on fixtures", 
     for (Antilag antilag : {Antilag::Off, Antilag::Statistics}) {
       ReprojectKernel k = kernel_for(f, prev, hist, out);
       k.params.antilag = antilag;
+      k.previous_depth = PreviousViewDepth::between(prev.camera, f.camera, f.width(), f.height());
+      CHECK(k.previous_depth.is_identity() == (std::string(name) == "cornell-moving"));
       CHECK(history_paths(k).all_taps > 0.5);
       require_rows_equal_pixels(k, std::string(name) + ", antilag " + std::to_string(int(antilag)));
     }

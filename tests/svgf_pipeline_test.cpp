@@ -303,6 +303,52 @@ void taa_follows_remodulation(const TestDevice& device) {
   }
 }
 
+// A camera dollying towards a wall changes the depth of every point it sees (by 10% here),
+// while nothing in view moves: the reprojection compares the previous depth with the point's
+// depth in the previous camera (reproject_camera_depth, core/previous_depth.h), so every pixel
+// keeps its history. Compared with the current depth (off, Falcor's test), every pixel loses
+// it. Frames carry their cameras; the motion vectors are the dolly's zoom.
+void camera_motion_keeps_history(const TestDevice& device) {
+  const int w = 48, h = 32;
+  const auto camera_at = [&](float z) {
+    Camera c;  // looking down -z from (0, 0, z), 60 degrees vertical field of view
+    c.world_to_view = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, -z, 0, 0, 0, 1};
+    const float ty = 0.57735027f, tx = ty * w / h;
+    c.view_to_clip = {1 / tx, 0, 0, 0, 0, 1 / ty, 0, 0, 0, 0, -1.00002f, -0.0200002f, 0, 0, -1, 0};
+    return c;
+  };
+  const float distances[] = {3.6f, 3.3f, 3.f};  // the wall is the plane z = 0
+  std::vector<Frame> frames;
+  for (int k = 0; k < 3; ++k) {
+    Frame f = test::flat_frame(w, h, distances[k]);
+    test::fill_uniform(f.color, 0.2f, 0.8f, 40 + k);
+    f.index = k;
+    f.camera = camera_at(distances[k]);
+    // A point at screen offset s from the centre was at s * (now / before) then.
+    const float zoom = k > 0 ? distances[k] / distances[k - 1] : 1.f;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const float sx = x + 0.5f - w / 2.f, sy = y + 0.5f - h / 2.f;
+        f.motion.at(x, y, 0) = sx * zoom - sx;
+        f.motion.at(x, y, 1) = sy * zoom - sy;
+      }
+    frames.push_back(std::move(f));
+  }
+  for (bool camera_depth : {true, false}) {
+    DenoiserConfig c = config_for(device);
+    c.svgf.reproject_camera_depth = camera_depth;
+    c.svgf.antilag = Antilag::Off;  // the reprojection's tests alone decide
+    auto d = make_denoiser(c);
+    Image out;
+    for (const Frame& f : frames) d->denoise(f, out);
+    const Image length = d->read_buffer(svgf_buffer::kHistoryLength);
+    for (float v : out.data()) REQUIRE(std::isfinite(v));
+    INFO("reproject_camera_depth " << camera_depth << ", centre pixel's history "
+                                   << length.at(w / 2, h / 2, 0));
+    for (float v : length.data()) REQUIRE(v == (camera_depth ? 3.f : 1.f));
+  }
+}
+
 }  // namespace
 
 SVGF_DEVICE_TEST("pipeline: --svgf-taa blends the output with its reprojected, clamped history",
@@ -314,6 +360,8 @@ SVGF_DEVICE_TEST("pipeline: the feedback tap is what the next frame reads", "[pi
 SVGF_DEVICE_TEST("pipeline: NaN, Inf and negative input is counted and does not poison the history",
                  "[pipeline]", bad_input_does_not_poison)
 SVGF_DEVICE_TEST("pipeline: reset() restarts the history", "[pipeline]", reset_restarts_history)
+SVGF_DEVICE_TEST("pipeline: a dollying camera keeps the history of the still wall it sees",
+                 "[pipeline]", camera_motion_keeps_history)
 SVGF_DEVICE_TEST("pipeline: the defaults are their documented values, as the pipeline uses them",
                  "[pipeline]", defaults_are_documented)
 SVGF_DEVICE_TEST("pipeline: phi_depth 0 means no depth term, in the a-trous and the variance stages",

@@ -73,6 +73,11 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
     const FrameInputs cur = backend_.inputs(in, /*position=*/false, split, gradient_mode());
 
     SvgfFrameBuffers b = signal_buffers(cur, 0, backend_.output(out));
+    // The depth the reprojection compares: where the camera moved, the previous camera's.
+    b.previous_depth = params_.reproject_camera_depth && has_history_
+                           ? PreviousViewDepth::between(previous_camera_, in.camera, in.width(),
+                                                        in.height())
+                           : PreviousViewDepth();
     b.color = split ? cur.direct : cur.color;
     if (params_.taa) {
       b.remodulated = backend_.rgb(remodulated_);
@@ -86,6 +91,7 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
     SvgfFrameBuffers indirect;
     if (split) {
       indirect = signal_buffers(cur, 1, backend_.rgb(indirect_output_));
+      indirect.previous_depth = b.previous_depth;
       indirect.color = cur.indirect;
       indirect.emission = {};  // the emission is part of direct
     }
@@ -101,6 +107,7 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
     backend_.finish(in, out);
 
     slot_ = 1 - slot_;
+    previous_camera_ = in.camera;
     has_history_ = true;
     split_history_ = split;
     report_.frame_done(engine);
@@ -250,6 +257,7 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
   Backend backend_;
   int slot_ = 0;  // history slot the next frame reads
   bool has_history_ = false;
+  Camera previous_camera_;  // the camera of the frame the history comes from
   bool split_history_ = false;    // the history is a split frame's
   bool split_allocated_ = false;  // the indirect history exists at this size
   // History per signal ([0]: color or direct, [1]: indirect) and slot.

@@ -86,10 +86,17 @@ struct SvgfParams {
   int gradient_lambda_radius = 1;
 
   // Reprojection tap tests. A tap is kept when its mesh id matches, its world normals agree to
-  // within reproject_normal_cos, and |z - z_prev| <= scale * fwidth(z) + relative * z.
+  // within reproject_normal_cos, and |z_then - z_prev| <= scale * fwidth(z) + relative * z.
   float reproject_depth_gradient_scale = 10.f;
   float reproject_depth_relative = 0.03f;
   float reproject_normal_cos = 0.9f;
+  // z_prev is compared with the depth this pixel's point had in the previous frame's camera
+  // (from the frames' cameras, core/previous_depth.h), not with z: under a fast turn or dolly
+  // the depth of a still wall point changes by more than reproject_depth_relative from frame to
+  // frame, and a fifth of the pixels lost their history every frame (docs/svgf.md). This
+  // project's choice (NRD's 2.5D motion vectors carry the view-Z change for the same reason);
+  // false: Falcor's and the paper's comparison with z itself.
+  bool reproject_camera_depth = true;
   // Bilinear taps whose kept weights sum below this count as no reprojection (Falcor: 0.01).
   float reproject_min_weight = 0.01f;
 

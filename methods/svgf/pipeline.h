@@ -9,6 +9,7 @@
 
 #include "core/copy.h"
 #include "core/fuse.h"
+#include "core/previous_depth.h"
 #include "core/taa.h"
 #include "core/views.h"
 #include "methods/svgf/atrous.h"
@@ -30,6 +31,8 @@ struct SvgfFrameBuffers {
   // Inputs of this frame.
   GuideView guides;
   GuideView prev_guides;  // the previous frame's, kept by the denoiser
+  // The depth this frame's points had in the previous camera (the reprojection's depth test).
+  PreviousViewDepth previous_depth;
   ConstRgbView color;
   ConstRgbView albedo;
   ConstRgbView emission;  // optional (no planes: no emitters in view)
@@ -174,6 +177,7 @@ inline ReprojectKernel reproject_kernel_for(const SvgfFrameBuffers& b, const Svg
   ReprojectKernel k;
   k.guides = b.guides;
   k.prev_guides = b.prev_guides;
+  k.previous_depth = b.previous_depth;
   k.illumination = b.illumination;
   k.color = b.color;
   k.albedo = b.albedo;
