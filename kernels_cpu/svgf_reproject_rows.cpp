@@ -60,7 +60,7 @@ SVGF_TAP_LOOP void reproject_bilinear(const ReprojectKernel& kernel, int y,
     float px = 0.f, py = 0.f;
     const bool moved = k.previous_position(x, y, i, px, py);
     const BilinearTaps taps = BilinearTaps::at(moved ? px : 0.f, moved ? py : 0.f);
-    const float z_then = k.depth_then(x, y, i);
+    const ReprojectKernel::TapTest test = k.tap_test(x, y, i);
     History h;
     float weight_sum = 0.f;
 #pragma GCC unroll 4
@@ -70,7 +70,7 @@ SVGF_TAP_LOOP void reproject_bilinear(const ReprojectKernel& kernel, int y,
       History with = h;
       float with_sum = weight_sum;
       k.add_tap(with, with_sum, j, taps.weight(t));
-      take_if(k.prev_guides.inside(xt, yt) & k.tap_matches(i, z_then, j), with, with_sum, h, weight_sum);
+      take_if(k.prev_guides.inside(xt, yt) & k.tap_matches(test, j), with, with_sum, h, weight_sum);
     }
     const bool bilinear = weight_sum >= min_weight;
     blend_read<kLambda>(k, x, y, i, i, moved & bilinear,
@@ -95,7 +95,7 @@ SVGF_TAP_LOOP void reproject_fallback(const ReprojectKernel& compact, int y,
     float px = 0.f, py = 0.f;
     k.previous_position(x, y, i, px, py);  // true: the first pass found it moved
     const int xn = ReprojectKernel::nearest(px), yn = ReprojectKernel::nearest(py);
-    const float z_then = k.depth_then(x, y, i);
+    const ReprojectKernel::TapTest test = k.tap_test(x, y, i);
     History h;
     float count = 0.f;
 #pragma GCC unroll 9
@@ -105,7 +105,7 @@ SVGF_TAP_LOOP void reproject_fallback(const ReprojectKernel& compact, int y,
       History with = h;
       float with_count = count;
       k.add_pixel(with, with_count, j);
-      take_if(k.prev_guides.inside(xt, yt) & k.tap_matches(i, z_then, j), with, with_count, h,
+      take_if(k.prev_guides.inside(xt, yt) & k.tap_matches(test, j), with, with_count, h,
               count);
     }
     blend_read<kLambda>(k, x, y, i, m, count > 0.f, ReprojectKernel::normalized(h, count));

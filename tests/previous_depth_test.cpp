@@ -32,7 +32,8 @@ Camera looking_down_z(double ex, double ey, double ez, int width, int height) {
 
 }  // namespace
 
-TEST_CASE("previous depth: the same camera, or none, leaves the depth as it is", "[previous_depth]") {
+TEST_CASE("previous depth: the same camera, or none, leaves the depth as it is",
+          "[previous_depth]") {
   const Camera none;
   const Camera cam = looking_down_z(0.3, 1.0, 4.0, 64, 32);
   for (const Camera& c : {none, cam}) {
@@ -113,7 +114,8 @@ TEST_CASE("previous depth: the camera-pan fixture's points, as their world posit
   const io::Sequence fixture(std::string(SVGF_SOURCE_DIR) + "/fixtures/camera-pan");
   const Frame prev = fixture.read(4), f = fixture.read(5);
   REQUIRE_FALSE(f.position.empty());
-  const PreviousViewDepth d = PreviousViewDepth::between(prev.camera, f.camera, f.width(), f.height());
+  const PreviousViewDepth d =
+      PreviousViewDepth::between(prev.camera, f.camera, f.width(), f.height());
   double worst = 0, largest_change = 0;
   int surfaces = 0;
   for (int y = 0; y < f.height(); ++y)

@@ -94,7 +94,7 @@ HistoryPaths history_paths(const ReprojectKernel& k) {
       int consistent = 0;
       float weight = 0.f;
       for (int t = 0; t < 4; ++t)
-        if (k.tap_consistent(i, k.depth_then(x, y, i), taps.x(t), taps.y(t))) {
+        if (k.tap_consistent(k.tap_test(x, y, i), taps.x(t), taps.y(t))) {
           ++consistent;
           weight += taps.weight(t);
         }

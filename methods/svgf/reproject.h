@@ -48,25 +48,31 @@ struct ReprojectKernel {
   float* history = nullptr;
   SvgfParams params;
 
-  // The depth pixel (x, y)'s point had in the previous camera: what the taps' depth must match.
-  SVGF_HD float depth_then(int x, int y, int i) const {
-    return previous_depth.at(x, y, guides.depth[i]);
-  }
-  // May the previous frame's pixel (xp, yp) stand for this frame's pixel i, whose point had the
-  // depth z_then (depth_then)?
-  SVGF_HD bool tap_consistent(int i, float z_then, int xp, int yp) const {
-    return prev_guides.inside(xp, yp) && tap_matches(i, z_then, prev_guides.index(xp, yp));
-  }
-  // The same for a previous pixel j inside the image: same mesh, similar depth and normal. All
-  // three tests are evaluated (no early exit), so a vectorized caller loads unconditionally.
-  SVGF_HD bool tap_matches(int i, float z_then, int j) const {
-    const bool same_mesh = guides.mesh_id[i] == prev_guides.mesh_id[j];
+  // What every previous-frame tap of pixel (x, y) (index i) is tested against, gathered once:
+  // its mesh, the depth its point had in the previous camera, the depth tolerance, its normal.
+  struct TapTest {
+    uint32_t mesh;
+    float depth_then;
+    float tolerance;
+    Vec3 normal;
+  };
+  SVGF_HD TapTest tap_test(int x, int y, int i) const {
     const float z = guides.depth[i];
     const float tolerance = params.reproject_depth_gradient_scale * guides.depth_fwidth(i) +
                             params.reproject_depth_relative * z;
-    const bool near_depth = abs_f(z_then - prev_guides.depth[j]) <= tolerance;  // NaN fails too
+    return {guides.mesh_id[i], previous_depth.at(x, y, z), tolerance, guides.normal.load(i)};
+  }
+  // May the previous frame's pixel (xp, yp) stand for the pixel of test t?
+  SVGF_HD bool tap_consistent(const TapTest& t, int xp, int yp) const {
+    return prev_guides.inside(xp, yp) && tap_matches(t, prev_guides.index(xp, yp));
+  }
+  // The same for a previous pixel j inside the image: same mesh, similar depth and normal. All
+  // three tests are evaluated (no early exit), so a vectorized caller loads unconditionally.
+  SVGF_HD bool tap_matches(const TapTest& t, int j) const {
+    const bool same_mesh = t.mesh == prev_guides.mesh_id[j];
+    const bool near_depth = abs_f(t.depth_then - prev_guides.depth[j]) <= t.tolerance;  // NaN: no
     const bool near_normal =
-        dot(guides.normal.load(i), prev_guides.normal.load(j)) >= params.reproject_normal_cos;
+        dot(t.normal, prev_guides.normal.load(j)) >= params.reproject_normal_cos;
     return same_mesh & near_depth & near_normal;
   }
 
@@ -108,12 +114,12 @@ struct ReprojectKernel {
     float px = 0.f, py = 0.f;
     if (!has_history || !previous_position(x, y, i, px, py)) return h;
     const BilinearTaps taps = BilinearTaps::at(px, py);
-    const float z_then = depth_then(x, y, i);
+    const TapTest test = tap_test(x, y, i);
     float weight_sum = 0.f;
     for (int k = 0; k < 4; ++k) {
       const int xk = taps.x(k);
       const int yk = taps.y(k);
-      if (tap_consistent(i, z_then, xk, yk))
+      if (tap_consistent(test, xk, yk))
         add_tap(h, weight_sum, prev_guides.index(xk, yk), taps.weight(k));
     }
     if (weight_sum >= params.reproject_min_weight) return normalized(h, weight_sum);
@@ -124,7 +130,7 @@ struct ReprojectKernel {
     float count = 0.f;
     for (int dy = -1; dy <= 1; ++dy)
       for (int dx = -1; dx <= 1; ++dx)
-        if (tap_consistent(i, z_then, xn + dx, yn + dy))
+        if (tap_consistent(test, xn + dx, yn + dy))
           add_pixel(h, count, prev_guides.index(xn + dx, yn + dy));
     return count > 0.f ? normalized(h, count) : History();
   }
