@@ -45,10 +45,15 @@ struct PreviousViewDepth {
     const auto& P = current.view_to_clip;
     const auto& Wc = current.world_to_view;
     const auto& Wp = previous.world_to_view;
-    const auto affine = [](const std::array<float, 16>& m) {
-      return m[12] == 0.f && m[13] == 0.f && m[14] == 0.f && m[15] == 1.f;
+    // Matrices made by multiplying others (an importer's) carry rounding residue where the
+    // model wants zeros: below 1e-6 of the row's scale it is taken as zero.
+    const auto tiny = [](float v, float scale) { return std::fabs(v) <= 1e-6f * scale; };
+    const auto affine = [&](const std::array<float, 16>& m) {
+      return tiny(m[12], 1.f) && tiny(m[13], 1.f) && tiny(m[14], 1.f) && tiny(m[15] - 1.f, 1.f);
     };
-    if (P[12] != 0.f || P[13] != 0.f || !affine(Wc) || !affine(Wp)) return identity;
+    const float w_scale = std::fabs(P[14]) + std::fabs(P[15]);
+    if (!tiny(P[12], w_scale) || !tiny(P[13], w_scale) || !affine(Wc) || !affine(Wp))
+      return identity;
 
     // The current view's inverse: [R t] -> [R^-1, -R^-1 t], R by its cofactors.
     const auto w = [&](int r, int c) { return static_cast<double>(Wc[r * 4 + c]); };

@@ -48,6 +48,16 @@ TEST_CASE("previous depth: the same camera, or none, leaves the depth as it is",
   moved.world_to_view[11] -= 0.5f;  // half a unit further back
   REQUIRE(PreviousViewDepth::between(moved, odd, 64, 32).is_identity());
   REQUIRE_FALSE(PreviousViewDepth::between(moved, cam, 64, 32).is_identity());
+  // Rounding residue where the model wants zeros (an importer's matrix products) is not a
+  // different projection: the same depths as without it.
+  Camera residue = cam, moved_residue = moved;
+  residue.view_to_clip[12] = 3e-9f;
+  residue.world_to_view[14] = -2e-9f;
+  moved_residue.world_to_view[15] = 1.f + 1e-7f;
+  const PreviousViewDepth clean = PreviousViewDepth::between(moved, cam, 64, 32);
+  const PreviousViewDepth noisy = PreviousViewDepth::between(moved_residue, residue, 64, 32);
+  REQUIRE_FALSE(noisy.is_identity());
+  CHECK(noisy.at(40, 10, 2.f) == Approx(clean.at(40, 10, 2.f)).epsilon(1e-6));
 }
 
 TEST_CASE("previous depth: a dolly adds its distance, a side step nothing", "[previous_depth]") {
