@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/frame.h"
+#include "core/matrix4.h"
 #include "io/games202_matrices.h"
 
 namespace svgf::app {
@@ -14,9 +15,8 @@ namespace svgf::app {
 using io::Matrix4;
 using io::SceneMatrices;
 
-Matrix4 multiply(const Matrix4& a, const Matrix4& b);
-// False when `m` is singular (or nearly: |det| below 1e-300).
-bool invert(const Matrix4& m, Matrix4& inverse);
+using svgf::invert;    // core/matrix4.h
+using svgf::multiply;
 // m * (x, y, z, 1): the homogeneous result (x, y, z, w).
 std::array<double, 4> transform(const Matrix4& m, const double p[3]);
 

@@ -1,6 +1,5 @@
 #pragma once
 // One rendered frame as the denoisers consume it (docs/frame-format.md describes the file form).
-#include <array>
 #include <cstdint>
 #include <stdexcept>
 #include <string>

@@ -16,6 +16,7 @@
 
 #include "core/camera.h"
 #include "core/hd.h"
+#include "core/matrix4.h"
 
 namespace svgf {
 
@@ -43,42 +44,19 @@ struct PreviousViewDepth {
     if (previous.world_to_view == current.world_to_view || width <= 0 || height <= 0)
       return identity;
     const auto& P = current.view_to_clip;
-    const auto& Wc = current.world_to_view;
-    const auto& Wp = previous.world_to_view;
     // Matrices made by multiplying others (an importer's) carry rounding residue where the
     // model wants zeros: below 1e-6 of the row's scale it is taken as zero.
-    const auto tiny = [](float v, float scale) { return std::fabs(v) <= 1e-6f * scale; };
-    const auto affine = [&](const std::array<float, 16>& m) {
-      return tiny(m[12], 1.f) && tiny(m[13], 1.f) && tiny(m[14], 1.f) && tiny(m[15] - 1.f, 1.f);
-    };
-    const float w_scale = std::fabs(P[14]) + std::fabs(P[15]);
-    if (!tiny(P[12], w_scale) || !tiny(P[13], w_scale) || !affine(Wc) || !affine(Wp))
+    const auto tiny = [](double v, double scale) { return std::fabs(v) <= 1e-6 * scale; };
+    const double w_scale = std::fabs(P[14]) + std::fabs(P[15]);
+    if (!tiny(P[12], w_scale) || !tiny(P[13], w_scale)) return identity;
+    // Previous view * current view^-1 takes a current view point to the previous view; its row
+    // 2 gives the previous depth, and its row 3 must be (0, 0, 0, 1) (affine views).
+    Matrix4 view_to_world;
+    if (!invert(to_double(current.world_to_view), view_to_world)) return identity;
+    const Matrix4 M = multiply(to_double(previous.world_to_view), view_to_world);
+    if (!tiny(M[12], 1.0) || !tiny(M[13], 1.0) || !tiny(M[14], 1.0) || !tiny(M[15] - 1.0, 1.0))
       return identity;
-
-    // The current view's inverse: [R t] -> [R^-1, -R^-1 t], R by its cofactors.
-    const auto w = [&](int r, int c) { return static_cast<double>(Wc[r * 4 + c]); };
-    const double c00 = w(1, 1) * w(2, 2) - w(1, 2) * w(2, 1);
-    const double c01 = w(0, 2) * w(2, 1) - w(0, 1) * w(2, 2);
-    const double c02 = w(0, 1) * w(1, 2) - w(0, 2) * w(1, 1);
-    const double det = w(0, 0) * c00 + w(1, 0) * c01 + w(2, 0) * c02;
-    if (!(std::fabs(det) > 0.0)) return identity;
-    double inv[3][4];
-    inv[0][0] = c00 / det;
-    inv[0][1] = c01 / det;
-    inv[0][2] = c02 / det;
-    inv[1][0] = (w(1, 2) * w(2, 0) - w(1, 0) * w(2, 2)) / det;
-    inv[1][1] = (w(0, 0) * w(2, 2) - w(0, 2) * w(2, 0)) / det;
-    inv[1][2] = (w(0, 2) * w(1, 0) - w(0, 0) * w(1, 2)) / det;
-    inv[2][0] = (w(1, 0) * w(2, 1) - w(1, 1) * w(2, 0)) / det;
-    inv[2][1] = (w(0, 1) * w(2, 0) - w(0, 0) * w(2, 1)) / det;
-    inv[2][2] = (w(0, 0) * w(1, 1) - w(0, 1) * w(1, 0)) / det;
-    for (int r = 0; r < 3; ++r)
-      inv[r][3] = -(inv[r][0] * w(0, 3) + inv[r][1] * w(1, 3) + inv[r][2] * w(2, 3));
-    // Row 2 of previous view * current view^-1: the previous depth of a current view point.
-    double m[4];
-    for (int c = 0; c < 4; ++c)
-      m[c] = static_cast<double>(Wp[8]) * inv[0][c] + static_cast<double>(Wp[9]) * inv[1][c] +
-             static_cast<double>(Wp[10]) * inv[2][c] + (c == 3 ? static_cast<double>(Wp[11]) : 0.0);
+    const double m[4] = {M[8], M[9], M[10], M[11]};
 
     // A view point (vx, vy, -d) lands on ndc (nx, ny) where P's rows 0 and 1 over its w
     // (P[14] (-d) + P[15]) give them: a 2x2 system in vx, vy, affine in d.

@@ -8,11 +8,12 @@
 #include <string>
 #include <vector>
 
+#include "core/matrix4.h"
 #include "io/io_error.h"
 
 namespace svgf::io {
 
-using Matrix4 = std::array<double, 16>;  // row-major, acts on column vectors
+using svgf::Matrix4;  // row-major, acts on column vectors (core/matrix4.h)
 
 struct SceneMatrices {
   std::vector<Matrix4> object_to_world;  // by object id
