@@ -28,11 +28,18 @@ struct ExactArith {
   // abs only in the sign of -0 and of NaN, for terms that a max(., 0) clamps next, which erases
   // both: the same bits there.
   SVGF_HD static float abs_before_clamp(float a) { return fabsf(a); }
+  // The selects against constants below take K, how they see their constants (core/vec.h,
+  // LiteralConstant; the CPU rows' RowExactArith passes its OpaqueConstant): the same values.
   // Clamped to [0, 1]; NaN stays NaN (it zeroes the weight it enters).
-  SVGF_HD static float saturate(float a) { return min_f(1.f, max_f(0.f, a)); }
-  SVGF_HD static float exp_nonpositive(float x) { return det_exp_nonpositive(x); }
+  template <class K = LiteralConstant>
+  SVGF_HD static float saturate(float a) { return min_f(K::of(1.f), max_f(K::of(0.f), a)); }
+  template <class K = LiteralConstant>
+  SVGF_HD static float exp_nonpositive(float x) { return det_exp_nonpositive<K>(x); }
   // exp(-(a + b)) for a, b >= 0, evaluated as exp((0 - a) - b).
-  SVGF_HD static float exp_neg_sum(float a, float b) { return det_exp_nonpositive((0.f - a) - b); }
+  template <class K = LiteralConstant>
+  SVGF_HD static float exp_neg_sum(float a, float b) {
+    return det_exp_nonpositive<K>((0.f - a) - b);
+  }
   SVGF_HD static float pow(float x, float y) { return det_pow(x, y); }
   SVGF_HD static float dot(Vec3 a, Vec3 b) { return svgf::dot(a, b); }
   // c + a * b, rounded twice (no FMA).
@@ -53,7 +60,8 @@ struct ExactArith {
   };
   SVGF_HD static Divider divide_by(float d) { return Divider{d}; }
   // w where w > 0, else 0 (NaN too).
-  SVGF_HD static float positive_part(float w) { return w > 0.f ? w : 0.f; }
+  template <class K = LiteralConstant>
+  SVGF_HD static float positive_part(float w) { return max_f(w, K::of(0.f)); }
   // inv_phi_z scaled by 1 / distance in pixels of the tap (dx, dy) * step; at the centre the
   // distance is 0 and the scale Inf (see edge_stopping_weight for why that drops the term).
   SVGF_HD static float tap_depth_scale(float inv_phi_z, int dx, int dy, int step) {

@@ -52,7 +52,9 @@ SVGF_HD float det_exp(float x) {
 
 // exp(x) for x <= 0 or NaN (NaN gives 0): the edge-stopping weights' case. The same bits as
 // det_exp for every x <= 0; with one clamp instead of two, GCC 12 if-converts (vectorizes) it.
-SVGF_HD float det_exp_nonpositive(float x) { return det_exp_clamped(max_f(x, -104.f)); }
+// K: how the clamp sees its constant (core/vec.h, LiteralConstant).
+template <class K = LiteralConstant>
+SVGF_HD float det_exp_nonpositive(float x) { return det_exp_clamped(max_f(x, K::of(-104.f))); }
 
 // exp(x) in double, same scheme with a degree-13 Taylor polynomial (error < 1e-16 on |r|<=ln2/2).
 // Used only inside det_pow, where a float result needs a few more bits than float carries.

@@ -37,6 +37,13 @@ SVGF_HD float dot(Vec3 a, Vec3 b) { return (a.x * b.x + a.y * b.y) + a.z * b.z; 
 SVGF_HD float min_f(float a, float b) { return a < b ? a : b; }
 // max_f(NaN, b) is b: a NaN never wins a max, which the callers rely on to drop bad values.
 SVGF_HD float max_f(float a, float b) { return a > b ? a : b; }
+// A constant as a select against it sees it: the value itself. The CPU row drivers pass
+// theirs through an opaque factor of 1 instead (kernels_cpu/row_tools.h, OpaqueConstant): GCC 12
+// compiles max_f and min_f against a literal as a compare and a blend, but against a value it
+// cannot see as one vmaxps/vminps, whose IEEE rule (a > b ? a : b) is max_f's exactly.
+struct LiteralConstant {
+  SVGF_HD static float of(float c) { return c; }
+};
 SVGF_HD float abs_f(float a) { return a < 0.f ? -a : a; }
 SVGF_HD Vec3 max_v(Vec3 a, float s) { return make_vec3(max_f(a.x, s), max_f(a.y, s), max_f(a.z, s)); }
 SVGF_HD Vec3 min_v(Vec3 a, Vec3 b) {

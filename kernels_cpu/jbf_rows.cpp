@@ -40,7 +40,7 @@ SVGF_TAP_LOOP void jbf_tap_group(const float* __restrict depth, const float* __r
       const int j = i + off[t];
       const JbfSample q{make_vec3(cr[j], cg[j], cb[j]), make_vec3(nx[j], ny[j], nz[j]),
                         make_vec3(px[j], py[j], pz[j])};
-      float w = jbf_weight<ExactArith>(c, q, d2[t], scales);
+      float w = jbf_weight<RowExactArith>(c, q, d2[t], scales);
       if (kB3) w = w * kw[t];
       // A tap without a surface adds -0, the identity of IEEE addition (+0 would turn a -0 sum
       // into +0): no branch, so GCC vectorizes the loop.

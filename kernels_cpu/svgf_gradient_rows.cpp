@@ -35,7 +35,7 @@ SVGF_TAP_LOOP void gradient_atrous_interior(const GradientAtrousKernel& kernel, 
       const bool centre = dx == 0 && dy == 0;
       const EdgeSample e{k.guides.depth[pq], k.guides.normal.load(pq), 0.f};
       const float scale = ExactArith::tap_depth_scale(inv_phi_z, dx, dy, step * kGradientStratum);
-      const float w = centre ? 1.f : edge_stopping_weight<ExactArith>(c, e, scale, power, 0.f);
+      const float w = centre ? 1.f : edge_stopping_weight<RowExactArith>(c, e, scale, power, 0.f);
       const bool take = (k.in.weight[q] > 0.f) & (centre | (k.guides.mesh_id[pq] == mesh));
       const float with_sum = weight_sum + w;
       const float with_delta = delta + k.in.delta[q] * w;

@@ -23,7 +23,9 @@ SVGF_TAP_LOOP void atrous_tap(const float* __restrict depth, const float* __rest
     const int i = row + x, j = row + offset + x;
     const EdgeSample c{depth[i], make_vec3(nx[i], ny[i], nz[i]), lum[i]};
     const EdgeSample q{depth[j], make_vec3(nx[j], ny[j], nz[j]), lum[j]};
-    const float wt = edge_stopping_weight(c, q, inv_phi_z[x] * inv_dist, power, inv_phi_l[x]) * kw;
+    const float wt =
+        edge_stopping_weight<RowExactArith>(c, q, inv_phi_z[x] * inv_dist, power, inv_phi_l[x]) *
+        kw;
     sw[x] = sw[x] + wt;
     sr[x] = sr[x] + cr[j] * wt;
     sg[x] = sg[x] + cg[j] * wt;
@@ -59,7 +61,7 @@ SVGF_TAP_LOOP void atrous_tap_row(const float* __restrict depth, const float* __
       if (kCentreRow && t == 2) continue;  // the centre tap is already in the sums
       const int j = i + row_offset + (t - 2) * step;
       const EdgeSample q{depth[j], make_vec3(nx[j], ny[j], nz[j]), lum[j]};
-      const float wt = edge_stopping_weight(c, q, ipz * d[t], power, ipl) * k[t];
+      const float wt = edge_stopping_weight<RowExactArith>(c, q, ipz * d[t], power, ipl) * k[t];
       w_sum = w_sum + wt;
       r_sum = r_sum + cr[j] * wt;
       g_sum = g_sum + cg[j] * wt;
@@ -89,7 +91,8 @@ SVGF_TAP_LOOP void variance_tap(const float* __restrict depth, const float* __re
     const int i = row + x, j = row + offset + x;
     const EdgeSample c{depth[i], make_vec3(nx[i], ny[i], nz[i]), lum[i]};
     const EdgeSample q{depth[j], make_vec3(nx[j], ny[j], nz[j]), lum[j]};
-    const float wt = edge_stopping_weight(c, q, inv_phi_z[x] * inv_dist, power, inv_phi_l);
+    const float wt =
+        edge_stopping_weight<RowExactArith>(c, q, inv_phi_z[x] * inv_dist, power, inv_phi_l);
     sw[x] = sw[x] + wt;
     sr[x] = sr[x] + cr[j] * wt;
     sg[x] = sg[x] + cg[j] * wt;

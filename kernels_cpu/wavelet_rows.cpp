@@ -20,7 +20,7 @@ SVGF_TAP_LOOP void wavelet_tap(const float* __restrict depth, const float* __res
   for (int x = x0; x < x1; ++x) {
     const int i = row + x, j = row + offset + x;
     const WaveletCentre p{depth[i], make_vec3(nx[i], ny[i], nz[i]), luma[i], inv_sigma_luma[x]};
-    const float w = wavelet_weight<ExactArith>(p, depth[j], make_vec3(nx[j], ny[j], nz[j]),
+    const float w = wavelet_weight<RowExactArith>(p, depth[j], make_vec3(nx[j], ny[j], nz[j]),
                                                luma[j], inv_sigma_depth, power) *
                     kw;
     sw[x] = sw[x] + w;

@@ -8,6 +8,7 @@
 #include "methods/svgf/variance.h"
 #include "kernels_cpu/svgf_rows.h"
 #include "kernels_cpu/parallel_for.h"
+#include "kernels_cpu/row_tools.h"
 #include "test_support.h"
 
 using namespace svgf;
@@ -56,6 +57,115 @@ TEST_CASE("cpu rows: a-trous rows equal the per-pixel kernel bitwise", "[cpu_row
                                           " step " + std::to_string(step) + " phi_normal " +
                                           std::to_string(phi));
       }
+  }
+}
+
+namespace {
+
+// Guides and signal where every select of the edge-stopping weight decides (the rows evaluate
+// them as max/min instructions against opaque constants, RowExactArith): cosines below 0 and
+// above 1 (saturate), NaN and -0 normals, NaN, -0, subnormal and Inf depths, luminance
+// differences whose exponent falls below the clamp at -104, NaN and Inf colors (a NaN term that
+// max(., 0) must drop, a NaN weight positive_part must zero), -0 and subnormal values.
+Frame clamp_guides(int w, int h, uint32_t seed) {
+  Frame f = random_guides(w, h, seed);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  for (int i = 0; i < w * h; ++i) {
+    switch (i % 11) {
+      case 1:  // anti-parallel: the cosine is negative
+        for (int c = 0; c < 3; ++c) f.normal.plane(c)[i] = -f.normal.plane(c)[i];
+        break;
+      case 2:  // longer than 1 (half-float normals): the cosine exceeds 1
+        for (int c = 0; c < 3; ++c) f.normal.plane(c)[i] *= 1.0003f;
+        break;
+      case 3: f.normal.plane(i % 3)[i] = nan; break;
+      case 4: f.normal.plane(0)[i] = -0.f; break;
+      case 5: f.depth.plane(0)[i] = i % 2 ? -0.f : 1e-40f; break;  // background / subnormal
+      case 6: f.depth.plane(0)[i] = i % 3 ? nan : inf; break;
+      case 7: f.depth_gradient.plane(i % 2)[i] = 0.f; break;
+      default: break;
+    }
+  }
+  return f;
+}
+
+void fill_clamp_signal(Image& in) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  const int n = in.width() * in.height();
+  for (int i = 0; i < n; ++i) {
+    float* v[4] = {&in.plane(0)[i], &in.plane(1)[i], &in.plane(2)[i], &in.plane(3)[i]};
+    switch (i % 13) {
+      case 1: *v[0] = 1e30f; break;  // |l_p - l_q| / phi_l far beyond 104
+      case 2: *v[1] = nan; break;
+      case 3: *v[2] = inf; break;
+      case 4: *v[i % 4] = -0.f; break;
+      case 5: *v[3] = 1e-42f; break;  // a subnormal variance
+      case 6: *v[3] = 0.f; break;
+      default: break;
+    }
+  }
+}
+
+}  // namespace
+
+TEST_CASE("cpu rows: RowExactArith gives ExactArith's bits, NaN, -0 and Inf included",
+          "[cpu_rows]") {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  const float values[] = {nan, -nan, inf, -inf, 0.f, -0.f, 1e-42f, -1e-42f, 1.f, 1.0003f, -1.f,
+                          0.5f, -103.9f, -104.f, -104.1f, -200.f, 88.f, 3e38f};
+  int differing = 0;
+  const auto same = [&](float a, float b) { differing += float_bits(a) != float_bits(b); };
+  for (float a : values) {
+    for (float c : {0.f, 1.f, -104.f}) same(cpu::RowExactArith::max(a, c), ExactArith::max(a, c));
+    same(cpu::RowExactArith::saturate(a), ExactArith::saturate(a));
+    same(cpu::RowExactArith::positive_part(a), ExactArith::positive_part(a));
+    if (!(a > 0.f)) same(cpu::RowExactArith::exp_nonpositive(a), ExactArith::exp_nonpositive(a));
+    for (float b : values)
+      if (!(a < 0.f) && !(b < 0.f))
+        same(cpu::RowExactArith::exp_neg_sum(a, b), ExactArith::exp_neg_sum(a, b));
+  }
+  REQUIRE(differing == 0);
+}
+
+TEST_CASE("cpu rows: a-trous and variance rows equal the kernels where the clamps decide",
+          "[cpu_rows]") {
+  const int sizes[][2] = {{131, 37}, {29, 17}};
+  uint32_t seed = 300;
+  for (const auto& size : sizes) {
+    const int w = size[0], h = size[1];
+    const Frame f = clamp_guides(w, h, ++seed);
+    Image in(w, h, 4), a(w, h, 4, -1.f), b(w, h, 4, -2.f);
+    test::fill_uniform(in, 0.f, 3.f, ++seed);
+    fill_clamp_signal(in);
+    for (float phi : {128.f, 100.f, 0.f})
+      for (int step : {1, 2, 4}) {
+        SvgfParams p;
+        p.phi_normal = phi;
+        const AtrousKernel k{f.guides(), {in.rgb(), in.plane(3)}, {a.rgb(), a.plane(3)}, step, p};
+        AtrousKernel k2 = k;
+        k2.out = {b.rgb(), b.plane(3)};
+        cpu::for_each_pixel(w, h, k);
+        cpu::run_atrous_rows(k2, w, h);
+        test::require_identical(b, a, "a-trous " + std::to_string(w) + "x" + std::to_string(h) +
+                                          " step " + std::to_string(step) + " phi_normal " +
+                                          std::to_string(phi));
+      }
+    Image moments(w, h, 2), history(w, h, 1, 1.f);  // every pixel young: all take the 7x7
+    test::fill_uniform(moments, 0.f, 2.f, ++seed);
+    for (float phi : {128.f, 3.f}) {
+      SvgfParams p;
+      p.phi_normal = phi;
+      const VarianceKernel k{f.guides(), {in.rgb(), in.plane(3)}, moments.plane(0),
+                             moments.plane(1), history.plane(0), {a.rgb(), a.plane(3)}, p};
+      VarianceKernel k2 = k;
+      k2.out = {b.rgb(), b.plane(3)};
+      cpu::for_each_pixel(w, h, k);
+      cpu::run_variance_rows(k2, w, h);
+      test::require_identical(b, a, "variance " + std::to_string(w) + "x" + std::to_string(h));
+    }
   }
 }
 
