@@ -19,15 +19,31 @@ SVGF_HD float bits_float(uint32_t u) { float f; memcpy(&f, &u, sizeof f); return
 SVGF_HD uint64_t double_bits(double d) { uint64_t u; memcpy(&u, &d, sizeof u); return u; }
 SVGF_HD double bits_double(uint64_t u) { double d; memcpy(&d, &u, sizeof d); return d; }
 
+// y 2^k for y in [0.7, 1.42] (e^r above) and k in [-150, 128], rounded once: as two exact
+// power-of-two factors, both normal floats, so that a subnormal result is rounded only once.
+// The split is at floor(k/2) (an arithmetic shift, one instruction); any split whose two
+// halves stay in [-126, 127] gives the same bits, since y 2^k1 is exact and the product's one
+// rounding is of y 2^k either way (tests/det_math_test.cpp checks it against the split at k/2
+// for every k). Both halves lie in [-75, 64].
+SVGF_HD float det_scale_pow2(float y, int k) {
+  static_assert((-3 >> 1) == -2, "det_scale_pow2 needs an arithmetic right shift");
+  const int k1 = k >> 1;
+  const int k2 = k - k1;
+  const float s1 = bits_float(static_cast<uint32_t>(k1 + 127) << 23);
+  const float s2 = bits_float(static_cast<uint32_t>(k2 + 127) << 23);
+  return (y * s1) * s2;  // y*s1 is exact; the only rounding is the last product
+}
+
 // exp(x) in float for x already clamped to [-104, 89]. Cody-Waite reduction x = k ln2 + r with
 // |r| <= ln2/2 (ln2 split so k*ln2_hi is exact for |k| <= 255), the Cephes expf minimax
 // polynomial for e^r, then 2^k applied as two exact power-of-two factors so that a subnormal
 // result is rounded only once. Straight-line code, so the CPU loops vectorize it.
 SVGF_HD float det_exp_clamped(float xc) {
-  // |k| <= 150: k converts to float and back exactly, so the integer is taken before the float
-  // (one conversion fewer a tap in the vectorized rows, where GCC cannot see the range).
-  const int ki = floor_small_int(xc * 1.44269504088896341f + 0.5f);
-  const float k = static_cast<float>(ki);
+  // k = floor(x log2e + 1/2), |k| <= 150: floorf is one rounding instruction (roundps,
+  // vrndscaleps: the CPU kernels are built with -fno-trapping-math; FRND on the GPU) and k
+  // converts to the integer exactly, two instructions where floor through truncation took six.
+  const float k = floorf(xc * 1.44269504088896341f + 0.5f);
+  const int ki = static_cast<int>(k);
   const float r = (xc - k * 0.693145751953125f) - k * 1.428606765330187e-06f;
   const float r2 = r * r;
   float p = 1.9875691500e-4f;
@@ -36,12 +52,7 @@ SVGF_HD float det_exp_clamped(float xc) {
   p = p * r + 4.1665795894e-2f;
   p = p * r + 1.6666665459e-1f;
   p = p * r + 5.0000001201e-1f;
-  const float y = (p * r2 + r) + 1.f;
-  const int k1 = ki / 2;  // both halves lie in [-75, 64]: 2^k1 and 2^k2 are normal floats
-  const int k2 = ki - k1;
-  const float s1 = bits_float(static_cast<uint32_t>(k1 + 127) << 23);
-  const float s2 = bits_float(static_cast<uint32_t>(k2 + 127) << 23);
-  return (y * s1) * s2;  // y*s1 is exact; the only rounding is the last product
+  return det_scale_pow2((p * r2 + r) + 1.f, ki);
 }
 
 // exp(x) in float, any x: below -104 the result is 0, above 89 +Inf, NaN stays NaN.

@@ -110,6 +110,74 @@ TEST_CASE("det_pow special values", "[det_math]") {
   CHECK(det_pow(0.5f, 140.f) == std::ldexp(1.f, -140));
 }
 
+namespace {
+
+// det_exp_clamped's last step, y 2^k, before it split k at floor(k/2): the split at k/2
+// (truncated). Both round y 2^k once, so they must agree bit for bit.
+float scale_pow2_split_at_half(float y, int k) {
+  const int k1 = k / 2;
+  const int k2 = k - k1;
+  return (y * bits_float(static_cast<uint32_t>(k1 + 127) << 23)) *
+         bits_float(static_cast<uint32_t>(k2 + 127) << 23);
+}
+
+// det_exp_clamped as it was before floorf and det_scale_pow2: k through truncation
+// (floor_small_int), 2^k split at k/2.
+float det_exp_clamped_before(float xc) {
+  const int ki = floor_small_int(xc * 1.44269504088896341f + 0.5f);
+  const float k = static_cast<float>(ki);
+  const float r = (xc - k * 0.693145751953125f) - k * 1.428606765330187e-06f;
+  const float r2 = r * r;
+  float p = 1.9875691500e-4f;
+  p = p * r + 1.3981999507e-3f;
+  p = p * r + 8.3334519073e-3f;
+  p = p * r + 4.1665795894e-2f;
+  p = p * r + 1.6666665459e-1f;
+  p = p * r + 5.0000001201e-1f;
+  return scale_pow2_split_at_half((p * r2 + r) + 1.f, ki);
+}
+
+}  // namespace
+
+TEST_CASE("det_exp_clamped gives the bits of its earlier form on [-104, 89]", "[det_math]") {
+  // Every 31st float of the clamped range, both signs, and the ends: floorf against floor
+  // through truncation, the split of 2^k at floor(k/2) against k/2 (exact-mode bits must not
+  // move). det_scale_pow2's test below covers every k with more y.
+  uint64_t differing = 0, n = 0;
+  const auto check = [&](float x) {
+    differing += float_bits(det_exp_clamped(x)) != float_bits(det_exp_clamped_before(x));
+    ++n;
+  };
+  for (uint32_t b = 0; b <= float_bits(104.f); b += 31) check(-bits_float(b));
+  for (uint32_t b = 0; b <= float_bits(89.f); b += 31) check(bits_float(b));
+  for (float x : {-104.f, 89.f, -0.f, 0.f, -103.97f, -0.3465736f, 0.3465736f}) check(x);
+  CHECK(n > 70000000u);
+  REQUIRE(differing == 0);
+}
+
+TEST_CASE("det_scale_pow2 gives the bits of the split at k/2 for every k of det_exp",
+          "[det_math]") {
+  // Every k det_exp_clamped makes (x in [-104, 89]), y over e^r's range and a little beyond:
+  // every 61st float of it and its last, subnormal results (k below -126) included.
+  const uint32_t first = float_bits(0.69f), last = float_bits(1.43f);
+  uint64_t differing = 0, n = 0, subnormal = 0;
+  for (int k = -150; k <= 128; ++k) {
+    const auto check = [&](uint32_t b) {
+      const float y = bits_float(b), got = det_scale_pow2(y, k);
+      differing += float_bits(got) != float_bits(scale_pow2_split_at_half(y, k));
+      subnormal += std::fpclassify(got) == FP_SUBNORMAL;
+      ++n;
+    };
+    for (uint32_t b = first; b < last; b += 61) check(b);
+    check(last);
+  }
+  CHECK(n > 20000000u);
+  CHECK(subnormal > 1000000u);
+  REQUIRE(differing == 0);
+  REQUIRE(det_scale_pow2(1.f, -149) == std::ldexp(1.f, -149));  // the smallest subnormal
+  REQUIRE(det_scale_pow2(1.f, 127) == std::ldexp(1.f, 127));
+}
+
 TEST_CASE("det_exp_nonpositive gives det_exp's bits for every x <= 0", "[det_math]") {
   const uint32_t end = float_bits(110.f);
   uint64_t differing = 0, n = 0;
