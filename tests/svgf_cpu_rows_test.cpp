@@ -32,6 +32,38 @@ Frame random_guides(int w, int h, uint32_t seed) {
   return f;
 }
 
+// One a-trous iteration of `in` over the frame's guides, per-pixel kernel against the rows.
+void require_atrous_rows_match(const Frame& f, const Image& in, float phi, int step) {
+  const int w = in.width(), h = in.height();
+  Image a(w, h, 4, -1.f), b(w, h, 4, -2.f);
+  SvgfParams p;
+  p.phi_normal = phi;
+  const AtrousKernel k{f.guides(), {in.rgb(), in.plane(3)}, {a.rgb(), a.plane(3)}, step, p};
+  AtrousKernel k2 = k;
+  k2.out = {b.rgb(), b.plane(3)};
+  cpu::for_each_pixel(w, h, k);
+  cpu::run_atrous_rows(k2, w, h);
+  test::require_identical(b, a, "a-trous " + std::to_string(w) + "x" + std::to_string(h) +
+                                    " step " + std::to_string(step) + " phi_normal " +
+                                    std::to_string(phi));
+}
+
+// The spatial variance estimate, likewise.
+void require_variance_rows_match(const Frame& f, const Image& acc, const Image& moments,
+                                 const Image& history, float phi) {
+  const int w = acc.width(), h = acc.height();
+  Image a(w, h, 4), b(w, h, 4);
+  SvgfParams p;
+  p.phi_normal = phi;
+  const VarianceKernel k{f.guides(), {acc.rgb(), acc.plane(3)}, moments.plane(0),
+                         moments.plane(1), history.plane(0), {a.rgb(), a.plane(3)}, p};
+  VarianceKernel k2 = k;
+  k2.out = {b.rgb(), b.plane(3)};
+  cpu::for_each_pixel(w, h, k);
+  cpu::run_variance_rows(k2, w, h);
+  test::require_identical(b, a, "variance " + std::to_string(w) + "x" + std::to_string(h));
+}
+
 }  // namespace
 
 TEST_CASE("cpu rows: a-trous rows equal the per-pixel kernel bitwise", "[cpu_rows]") {
@@ -42,21 +74,10 @@ TEST_CASE("cpu rows: a-trous rows equal the per-pixel kernel bitwise", "[cpu_row
     const int w = size[0], h = size[1];
     Frame f = random_guides(w, h, ++seed);
     if (w * h > 100) f.normal.plane(1)[w + 1] = std::numeric_limits<float>::quiet_NaN();
-    Image in(w, h, 4), a(w, h, 4, -1.f), b(w, h, 4, -2.f);
+    Image in(w, h, 4);
     test::fill_uniform(in, 0.f, 3.f, ++seed);
     for (float phi : phis)
-      for (int step : {1, 2, 4, 8, 16}) {
-        SvgfParams p;
-        p.phi_normal = phi;
-        const AtrousKernel k{f.guides(), {in.rgb(), in.plane(3)}, {a.rgb(), a.plane(3)}, step, p};
-        AtrousKernel k2 = k;
-        k2.out = {b.rgb(), b.plane(3)};
-        cpu::for_each_pixel(w, h, k);
-        cpu::run_atrous_rows(k2, w, h);
-        test::require_identical(b, a, "a-trous " + std::to_string(w) + "x" + std::to_string(h) +
-                                          " step " + std::to_string(step) + " phi_normal " +
-                                          std::to_string(phi));
-      }
+      for (int step : {1, 2, 4, 8, 16}) require_atrous_rows_match(f, in, phi, step);
   }
 }
 
@@ -137,35 +158,14 @@ TEST_CASE("cpu rows: a-trous and variance rows equal the kernels where the clamp
   for (const auto& size : sizes) {
     const int w = size[0], h = size[1];
     const Frame f = clamp_guides(w, h, ++seed);
-    Image in(w, h, 4), a(w, h, 4, -1.f), b(w, h, 4, -2.f);
+    Image in(w, h, 4);
     test::fill_uniform(in, 0.f, 3.f, ++seed);
     fill_clamp_signal(in);
     for (float phi : {128.f, 100.f, 0.f})
-      for (int step : {1, 2, 4}) {
-        SvgfParams p;
-        p.phi_normal = phi;
-        const AtrousKernel k{f.guides(), {in.rgb(), in.plane(3)}, {a.rgb(), a.plane(3)}, step, p};
-        AtrousKernel k2 = k;
-        k2.out = {b.rgb(), b.plane(3)};
-        cpu::for_each_pixel(w, h, k);
-        cpu::run_atrous_rows(k2, w, h);
-        test::require_identical(b, a, "a-trous " + std::to_string(w) + "x" + std::to_string(h) +
-                                          " step " + std::to_string(step) + " phi_normal " +
-                                          std::to_string(phi));
-      }
+      for (int step : {1, 2, 4}) require_atrous_rows_match(f, in, phi, step);
     Image moments(w, h, 2), history(w, h, 1, 1.f);  // every pixel young: all take the 7x7
     test::fill_uniform(moments, 0.f, 2.f, ++seed);
-    for (float phi : {128.f, 3.f}) {
-      SvgfParams p;
-      p.phi_normal = phi;
-      const VarianceKernel k{f.guides(), {in.rgb(), in.plane(3)}, moments.plane(0),
-                             moments.plane(1), history.plane(0), {a.rgb(), a.plane(3)}, p};
-      VarianceKernel k2 = k;
-      k2.out = {b.rgb(), b.plane(3)};
-      cpu::for_each_pixel(w, h, k);
-      cpu::run_variance_rows(k2, w, h);
-      test::require_identical(b, a, "variance " + std::to_string(w) + "x" + std::to_string(h));
-    }
+    for (float phi : {128.f, 3.f}) require_variance_rows_match(f, in, moments, history, phi);
   }
 }
 
@@ -175,21 +175,11 @@ TEST_CASE("cpu rows: spatial variance rows equal the per-pixel kernel bitwise", 
   for (const auto& size : sizes) {
     const int w = size[0], h = size[1];
     const Frame f = random_guides(w, h, ++seed);
-    Image acc(w, h, 4), moments(w, h, 2), history(w, h, 1), a(w, h, 4), b(w, h, 4);
+    Image acc(w, h, 4), moments(w, h, 2), history(w, h, 1);
     test::fill_uniform(acc, 0.f, 3.f, ++seed);
     test::fill_uniform(moments, 0.f, 2.f, ++seed);
     test::fill_uniform(history, 1.f, 6.f, ++seed);
     for (float& v : history.data()) v = std::floor(v);  // a mix of young (<4) and old history
-    for (float phi : {128.f, 3.f}) {
-      SvgfParams p;
-      p.phi_normal = phi;
-      const VarianceKernel k{f.guides(), {acc.rgb(), acc.plane(3)}, moments.plane(0),
-                             moments.plane(1), history.plane(0), {a.rgb(), a.plane(3)}, p};
-      VarianceKernel k2 = k;
-      k2.out = {b.rgb(), b.plane(3)};
-      cpu::for_each_pixel(w, h, k);
-      cpu::run_variance_rows(k2, w, h);
-      test::require_identical(b, a, "variance " + std::to_string(w) + "x" + std::to_string(h));
-    }
+    for (float phi : {128.f, 3.f}) require_variance_rows_match(f, acc, moments, history, phi);
   }
 }
