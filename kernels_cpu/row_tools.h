@@ -21,7 +21,7 @@ namespace svgf::cpu {
 #define SVGF_TAP_LOOP __attribute__((noinline))
 
 // 1, where the optimizer cannot see it: noipa hides the body from every caller, const lets the
-// loop-invariant call move out of the row loops (one call a row, not a pixel). Other compilers
+// loop-invariant call move out of the row loops (one call a loop, not a pixel). Other compilers
 // see a plain 1 (the same values; only the instruction choice below is lost).
 #if defined(__GNUC__) && !defined(__clang__)
 __attribute__((noipa, const)) inline float opaque_one() { return 1.f; }
