@@ -94,6 +94,13 @@ struct DepthNormal {
   Vec3 normal;
 };
 
+// A pixel has a surface where its depth is > 0 (background <= 0; NaN is no surface either).
+SVGF_HD bool has_surface(float depth) { return depth > 0.f; }
+// Largest absolute screen-space depth derivative (HLSL max(|ddx|,|ddy|), as Falcor stores it).
+SVGF_HD float depth_fwidth_of(float depth_dx, float depth_dy) {
+  return max_f(abs_f(depth_dx), abs_f(depth_dy));
+}
+
 // The G-buffer of one frame as the filters read it. Background pixels (no surface) have
 // depth <= 0; every test below treats them, and NaN depth, as "no surface".
 struct GuideView {
@@ -109,9 +116,8 @@ struct GuideView {
 
   SVGF_HD int index(int x, int y) const { return y * width + x; }
   SVGF_HD bool inside(int x, int y) const { return x >= 0 && y >= 0 && x < width && y < height; }
-  // Largest absolute screen-space depth derivative (HLSL max(|ddx|,|ddy|), as Falcor stores it).
-  SVGF_HD float depth_fwidth(int i) const { return max_f(abs_f(depth_dx[i]), abs_f(depth_dy[i])); }
-  SVGF_HD bool is_surface(int i) const { return depth[i] > 0.f; }
+  SVGF_HD float depth_fwidth(int i) const { return depth_fwidth_of(depth_dx[i], depth_dy[i]); }
+  SVGF_HD bool is_surface(int i) const { return has_surface(depth[i]); }
   SVGF_HD DepthNormal depth_normal(int i) const { return DepthNormal{depth[i], normal.load(i)}; }
 };
 
@@ -126,12 +132,12 @@ struct PackedGuides {
 
   SVGF_HD int index(int x, int y) const { return y * width + x; }
   SVGF_HD bool inside(int x, int y) const { return x >= 0 && y >= 0 && x < width && y < height; }
-  SVGF_HD float depth_fwidth(int i) const { return max_f(abs_f(depth_dx[i]), abs_f(depth_dy[i])); }
+  SVGF_HD float depth_fwidth(int i) const { return depth_fwidth_of(depth_dx[i], depth_dy[i]); }
   SVGF_HD DepthNormal depth_normal(int i) const {
     const Packed4 p = load_packed(depth_normal_data, i);
     return DepthNormal{p.x, make_vec3(p.y, p.z, p.w)};
   }
-  SVGF_HD bool is_surface(int i) const { return depth_normal(i).depth > 0.f; }
+  SVGF_HD bool is_surface(int i) const { return has_surface(depth_normal(i).depth); }
 };
 
 }  // namespace svgf

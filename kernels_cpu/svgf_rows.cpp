@@ -104,6 +104,53 @@ SVGF_TAP_LOOP void variance_tap(const float* __restrict depth, const float* __re
 
 // --- a-trous ---------------------------------------------------------------------------------
 
+// A row's centre terms, the per-pixel kernel's first lines: 1 / phi_l from the prefiltered
+// variance (in place), 1 / phi_z, and the centre's own term in the sums. A function of its own
+// with restrict arguments, like the tap loops, so that GCC vectorizes its divisions and square
+// roots (inlined into the row they stayed scalar: 2 divisions and a root a pixel).
+SVGF_TAP_LOOP void atrous_centre_terms(const float* __restrict depth_dx,
+                                       const float* __restrict depth_dy,
+                                       const float* __restrict cr, const float* __restrict cg,
+                                       const float* __restrict cb, const float* __restrict var_in,
+                                       float* __restrict inv_phi_l, float* __restrict inv_phi_z,
+                                       float* __restrict sw, float* __restrict sr,
+                                       float* __restrict sg, float* __restrict sb,
+                                       float* __restrict sv, int row, int w, SvgfParams p) {
+  const float center_k = b3_weight(0) * b3_weight(0);
+  for (int x = 0; x < w; ++x) {
+    const int i = row + x;
+    inv_phi_l[x] = atrous_inv_phi_luminance(p, inv_phi_l[x]);
+    inv_phi_z[x] = inv_depth_tolerance(p.phi_depth, depth_fwidth_of(depth_dx[i], depth_dy[i]),
+                                       p.depth_gradient_floor);
+    sw[x] = center_k;
+    sr[x] = cr[i] * center_k;
+    sg[x] = cg[i] * center_k;
+    sb[x] = cb[i] * center_k;
+    sv[x] = var_in[i] * (center_k * center_k);
+  }
+}
+
+// A row's results, the per-pixel kernel's last lines: the sums over the weight (the variance
+// over its square) on surfaces, the input passed through elsewhere. Restrict, likewise (4
+// divisions a pixel). The image planes come offset to the row, so every array is indexed by x:
+// indexed by row + x against the sums' x, GCC 12 could not clear the loads of the conditional
+// branch against the stores and left the loop scalar.
+SVGF_TAP_LOOP void atrous_normalize(const float* __restrict depth, const float* __restrict in_r,
+                                    const float* __restrict in_g, const float* __restrict in_b,
+                                    const float* __restrict var_in, const float* __restrict sw,
+                                    const float* __restrict sr, const float* __restrict sg,
+                                    const float* __restrict sb, const float* __restrict sv,
+                                    float* __restrict out_r, float* __restrict out_g,
+                                    float* __restrict out_b, float* __restrict out_v, int w) {
+  for (int x = 0; x < w; ++x) {
+    const bool surface = has_surface(depth[x]);
+    out_r[x] = surface ? sr[x] / sw[x] : in_r[x];
+    out_g[x] = surface ? sg[x] / sw[x] : in_g[x];
+    out_b[x] = surface ? sb[x] / sw[x] : in_b[x];
+    out_v[x] = surface ? sv[x] / (sw[x] * sw[x]) : var_in[x];
+  }
+}
+
 template <class Power>
 void atrous_row(const AtrousKernel& k, const float* __restrict lum, int y, RowScratch& s,
                 const Power& power) {
@@ -127,17 +174,8 @@ void atrous_row(const AtrousKernel& k, const float* __restrict lum, int y, RowSc
   } else {
     for (int x = 0; x < w; ++x) inv_phi_l[x] = prefiltered_variance(g, var_in, x, y);
   }
-  const float center_k = b3_weight(0) * b3_weight(0);
-  for (int x = 0; x < w; ++x) {
-    const int i = row + x;
-    inv_phi_l[x] = atrous_inv_phi_luminance(p, inv_phi_l[x]);
-    inv_phi_z[x] = inv_depth_tolerance(p.phi_depth, g.depth_fwidth(i), p.depth_gradient_floor);
-    sw[x] = center_k;
-    sr[x] = k.in.color.r[i] * center_k;
-    sg[x] = k.in.color.g[i] * center_k;
-    sb[x] = k.in.color.b[i] * center_k;
-    sv[x] = var_in[i] * (center_k * center_k);
-  }
+  atrous_centre_terms(g.depth_dx, g.depth_dy, k.in.color.r, k.in.color.g, k.in.color.b, var_in,
+                      inv_phi_l, inv_phi_z, sw, sr, sg, sb, sv, row, w, p);
   // Taps in the per-pixel kernel's order; a tap row or column outside the image is skipped,
   // exactly as the per-pixel kernel skips it.
   const float* __restrict depth = g.depth;
@@ -181,14 +219,9 @@ void atrous_row(const AtrousKernel& k, const float* __restrict lum, int y, RowSc
       tap(std::max(x0, inner1), x1);  // right border
     }
   }
-  for (int x = 0; x < w; ++x) {
-    const int i = row + x;
-    const bool surface = g.is_surface(i);
-    k.out.color.r[i] = surface ? sr[x] / sw[x] : k.in.color.r[i];
-    k.out.color.g[i] = surface ? sg[x] / sw[x] : k.in.color.g[i];
-    k.out.color.b[i] = surface ? sb[x] / sw[x] : k.in.color.b[i];
-    k.out.variance[i] = surface ? sv[x] / (sw[x] * sw[x]) : var_in[i];
-  }
+  atrous_normalize(g.depth + row, k.in.color.r + row, k.in.color.g + row, k.in.color.b + row,
+                   var_in + row, sw, sr, sg, sb, sv, k.out.color.r + row, k.out.color.g + row,
+                   k.out.color.b + row, k.out.variance + row, w);
 }
 
 // --- spatial variance estimate -----------------------------------------------------------------
