@@ -2,9 +2,11 @@
 // (inside? consistent?) and stays scalar. A row runs its two history reads as vector loops,
 // built from the kernel's own pieces (methods/svgf/reproject.h: the same operations in the
 // same order): every pixel through its bilinear taps, then the pixels whose taps weigh too
-// little through the 3x3 fallback. The per-pixel kernel runs the stage under the statistics
-// anti-lag and without history. Same bits as the per-pixel kernel
-// (tests/svgf_cpu_reproject_rows_test.cpp).
+// little through the 3x3 fallback. A camera's motion field is smooth, so the taps of 16
+// neighbouring pixels mostly lie within a 3x3 window's shifts of them: such a chunk reads its
+// taps by contiguous loads and selects (same values), the others through gathers. The
+// per-pixel kernel runs the stage under the statistics anti-lag and without history. Same bits
+// as the per-pixel kernel (tests/svgf_cpu_reproject_rows_test.cpp).
 #include <vector>
 
 #include "kernels_cpu/row_tools.h"
@@ -41,21 +43,20 @@ inline void blend_read(const ReprojectKernel& k, int x, int y, int i, int at, bo
   k.blend(at, c, luminance(c), ReprojectKernel::none_unless(kept, h), kept ? lambda : 0.f);
 }
 
-// Pixels 0..w-1 of row y through their bilinear taps, as read_history reads them: outputs
+// Pixels x0..x1-1 of row y through their bilinear taps, as read_history reads them: outputs
 // written for every pixel, and fallback[x] set where pixel x needs read_history's 3x3 block
 // instead (its outputs are meaningless then; the next pass overwrites them). A tap is loaded
 // clamped into the image (every load in bounds) and added where read_history adds it (inside
 // and consistent), the same sums.
 template <bool kLambda>
-SVGF_TAP_LOOP void reproject_bilinear(const ReprojectKernel& kernel, int y,
+SVGF_TAP_LOOP void reproject_bilinear(const ReprojectKernel& kernel, int y, int x0, int x1,
                                       int* __restrict fallback) {
   using History = ReprojectKernel::History;
   const ReprojectKernel k = kernel;  // a local copy: its plane pointers stay in registers
-  const int w = k.guides.width;
   const int last_x = k.prev_guides.width - 1, last_y = k.prev_guides.height - 1;
   const float min_weight = k.params.reproject_min_weight;
 #pragma GCC ivdep
-  for (int x = 0; x < w; ++x) {
+  for (int x = x0; x < x1; ++x) {
     const int i = k.guides.index(x, y);
     float px = 0.f, py = 0.f;
     const bool moved = k.previous_position(x, y, i, px, py);
@@ -77,6 +78,169 @@ SVGF_TAP_LOOP void reproject_bilinear(const ReprojectKernel& kernel, int y,
                         ReprojectKernel::normalized(h, weight_sum));
     fallback[x] = moved & !bilinear;
   }
+}
+
+// The pixels of a chunk: their taps' shifts are tested together, and a chunk is one vector
+// iteration (or two, or four) on every instruction set.
+constexpr int kChunk = 16;
+
+// Member-wise selects (a vector blend each): a where c, else b.
+inline ReprojectKernel::TapGuides pick(bool c, const ReprojectKernel::TapGuides& a,
+                                       const ReprojectKernel::TapGuides& b) {
+  return {c ? a.mesh : b.mesh, c ? a.depth : b.depth,
+          make_vec3(c ? a.normal.x : b.normal.x, c ? a.normal.y : b.normal.y,
+                    c ? a.normal.z : b.normal.z)};
+}
+inline ReprojectKernel::History pick(bool c, const ReprojectKernel::History& a,
+                                     const ReprojectKernel::History& b) {
+  ReprojectKernel::History h;
+  h.color = make_vec3(c ? a.color.x : b.color.x, c ? a.color.y : b.color.y,
+                      c ? a.color.z : b.color.z);
+  h.moments = make_vec2(c ? a.moments.x : b.moments.x, c ? a.moments.y : b.moments.y);
+  h.length = c ? a.length : b.length;
+  h.valid = true;
+  return h;
+}
+
+// What read(j) gives at index j shifted right by sx and down by sy (0 or 1 each) in a frame
+// pw wide: four loads at indices contiguous along the chunk, and selects.
+template <class Read>
+inline auto read_shifted(const Read& read, int j, bool sx, bool sy, int pw) {
+  return pick(sy, pick(sx, read(j + pw + 1), read(j + pw)), pick(sx, read(j + 1), read(j)));
+}
+
+// Where the taps of the chunk of pixels x0.. lie: pixel x's top-left tap is (x + dx, y + dy)
+// with dx in dx_min and dx_min + 1 (only dx_min for a window without shift_x), dy in dy_min
+// and dy_min + 1 (only dy_min without shift_y), and all of the window's shifts inside the
+// previous frame (whether a pixel uses them or not, every load below is in bounds).
+struct ChunkWindow {
+  int x0, dx_min, dy_min;
+};
+
+// The chunks of row y whose taps lie in windows[0..n) through their bilinear taps as
+// reproject_bilinear reads them: each tap read at its shift of the window's top-left by
+// read_shifted, the same values, sums and outputs. kShiftX and kShiftY: whether the windows
+// have the shifts (a chunk without them needs no selects). One call a row and kind of window:
+// the setup is paid once, not per chunk.
+template <bool kLambda, bool kShiftX, bool kShiftY>
+SVGF_TAP_LOOP void reproject_bilinear_windows(const ReprojectKernel& kernel, int y,
+                                              const ChunkWindow* __restrict windows, int n,
+                                              int* __restrict fallback) {
+  using History = ReprojectKernel::History;
+  const ReprojectKernel k = kernel;
+  const int pw = k.prev_guides.width;
+  const float min_weight = k.params.reproject_min_weight;
+  const auto guides_at = [&k](int j) { return k.tap_guides(j); };
+  const auto history_at = [&k](int j) { return k.tap_history(j); };
+  for (int c = 0; c < n; ++c) {
+    const ChunkWindow window = windows[c];
+    const int x0 = window.x0;
+    // The window's top-left for pixel x0; pixel x's is `corner + x - x0`.
+    const int corner = k.prev_guides.index(x0 + window.dx_min, y + window.dy_min);
+#pragma GCC ivdep
+    for (int l = 0; l < kChunk; ++l) {
+      const int x = x0 + l;
+      const int i = k.guides.index(x, y);
+      float px = 0.f, py = 0.f;
+      k.previous_position(x, y, i, px, py);  // true: the window holds its taps
+      const BilinearTaps taps = BilinearTaps::at(px, py);
+      const bool sx = kShiftX && taps.x0 != x + window.dx_min;
+      const bool sy = kShiftY && taps.y0 != y + window.dy_min;
+      const ReprojectKernel::TapTest test = k.tap_test(x, y, i);
+      History h;
+      float weight_sum = 0.f;
+#pragma GCC unroll 4
+      for (int t = 0; t < 4; ++t) {
+        const int j = corner + l + (t & 1) + (t >> 1) * pw;
+        History with = h;
+        float with_sum = weight_sum;
+        ReprojectKernel::add_tap(with, with_sum, read_shifted(history_at, j, sx, sy, pw),
+                                 taps.weight(t));
+        take_if(k.tap_matches(test, read_shifted(guides_at, j, sx, sy, pw)), with, with_sum, h,
+                weight_sum);
+      }
+      const bool bilinear = weight_sum >= min_weight;
+      blend_read<kLambda>(k, x, y, i, i, bilinear, ReprojectKernel::normalized(h, weight_sum));
+      fallback[x] = !bilinear;
+    }
+  }
+}
+
+// Each pixel's top-left tap as a shift (dx[x], dy[x]) from it, for the pixels of row y;
+// moved[x] where it has history to read (previous_position).
+SVGF_TAP_LOOP void tap_shifts(const ReprojectKernel& kernel, int y, int* __restrict dx,
+                              int* __restrict dy, int* __restrict moved) {
+  const ReprojectKernel k = kernel;
+  const int w = k.guides.width;
+  for (int x = 0; x < w; ++x) {
+    float px = 0.f, py = 0.f;
+    moved[x] = k.previous_position(x, y, k.guides.index(x, y), px, py);
+    const BilinearTaps taps = BilinearTaps::at(moved[x] ? px : 0.f, moved[x] ? py : 0.f);
+    dx[x] = taps.x0 - x;
+    dy[x] = taps.y0 - y;
+  }
+}
+
+// The kinds of window: 1 with a shift in x, 2 with one in y.
+constexpr int kWindowKinds = 4;
+
+// Whether the chunk of pixels x0.. of row y all moved and have their taps in one window inside
+// the previous frame: its kind, and the window; -1 where not.
+int chunk_window(const ReprojectKernel& k, int y, int x0, const int* dx, const int* dy,
+                 const int* moved, ChunkWindow& window) {
+  int all_moved = 1, dx_min = dx[x0], dx_max = dx[x0], dy_min = dy[x0], dy_max = dy[x0];
+  for (int x = x0; x < x0 + kChunk; ++x) {
+    all_moved &= moved[x];
+    dx_min = dx[x] < dx_min ? dx[x] : dx_min;
+    dx_max = dx[x] > dx_max ? dx[x] : dx_max;
+    dy_min = dy[x] < dy_min ? dy[x] : dy_min;
+    dy_max = dy[x] > dy_max ? dy[x] : dy_max;
+  }
+  window = {x0, dx_min, dy_min};
+  // The window's columns x0 + dx_min .. x0 + kChunk + dx_max, rows y + dy_min .. y + dy_max + 1.
+  const bool inside = all_moved && dx_max - dx_min <= 1 && dy_max - dy_min <= 1 &&
+                      x0 + dx_min >= 0 && x0 + kChunk + dx_max < k.prev_guides.width &&
+                      y + dy_min >= 0 && y + dy_max + 1 < k.prev_guides.height;
+  return inside ? (dx_max - dx_min) + 2 * (dy_max - dy_min) : -1;
+}
+
+// A row's scratch.
+struct RowInts {
+  std::vector<int> dx, dy, moved, fallback, pending;
+  std::vector<ChunkWindow> windows;  // kWindowKinds lists, each room for every chunk
+  explicit RowInts(int width)
+      : dx(static_cast<size_t>(width)), dy(dx.size()), moved(dx.size()), fallback(dx.size()),
+        pending(dx.size()), windows(kWindowKinds * (dx.size() / kChunk + 1)) {}
+};
+
+// Row y's bilinear pass: the chunks whose taps lie in one window through
+// reproject_bilinear_windows (a call for each kind), the pixels between them through
+// reproject_bilinear's gathers.
+template <bool kLambda>
+void reproject_bilinear_row(const ReprojectKernel& kernel, int y, RowInts& ints) {
+  const int w = kernel.guides.width;
+  int* fallback = ints.fallback.data();
+  tap_shifts(kernel, y, ints.dx.data(), ints.dy.data(), ints.moved.data());
+  const int room = w / kChunk + 1;
+  int count[kWindowKinds] = {};
+  int gather_from = 0;  // the first pixel not read yet, nor in a window
+  for (int x0 = 0; x0 + kChunk <= w; x0 += kChunk) {
+    ChunkWindow window;
+    const int kind =
+        chunk_window(kernel, y, x0, ints.dx.data(), ints.dy.data(), ints.moved.data(), window);
+    if (kind < 0) continue;
+    if (gather_from < x0) reproject_bilinear<kLambda>(kernel, y, gather_from, x0, fallback);
+    ints.windows[kind * room + count[kind]++] = window;
+    gather_from = x0 + kChunk;
+  }
+  if (gather_from < w) reproject_bilinear<kLambda>(kernel, y, gather_from, w, fallback);
+  const ChunkWindow* windows = ints.windows.data();
+  reproject_bilinear_windows<kLambda, false, false>(kernel, y, windows, count[0], fallback);
+  reproject_bilinear_windows<kLambda, true, false>(kernel, y, windows + room, count[1], fallback);
+  reproject_bilinear_windows<kLambda, false, true>(kernel, y, windows + 2 * room, count[2],
+                                                   fallback);
+  reproject_bilinear_windows<kLambda, true, true>(kernel, y, windows + 3 * room, count[3],
+                                                  fallback);
 }
 
 // read_history's fallback for the pixels x = pending[0..n) of row y, one a lane, the same
@@ -116,9 +280,11 @@ SVGF_TAP_LOOP void reproject_fallback(const ReprojectKernel& compact, int y,
 // fallback, their outputs copied into place.
 template <bool kLambda>
 void reproject_row(const ReprojectKernel& kernel, const ReprojectKernel& compact, int y,
-                   int* fallback, int* pending) {
+                   RowInts& ints) {
   const int w = kernel.guides.width;
-  reproject_bilinear<kLambda>(kernel, y, fallback);
+  int* fallback = ints.fallback.data();
+  int* pending = ints.pending.data();
+  reproject_bilinear_row<kLambda>(kernel, y, ints);
   int n = 0;
   for (int x = 0; x < w; ++x)
     if (fallback[x]) pending[n++] = x;
@@ -144,7 +310,7 @@ void run_reproject_rows(const ReprojectKernel& kernel, int width, int height) {
     return;
   }
   parallel_rows(height, [&](int y0, int y1) {
-    std::vector<int> fallback(static_cast<size_t>(width)), pending(fallback.size());
+    RowInts ints(width);
     RowScratch out(7, width);
     ReprojectKernel compact = kernel;
     compact.accumulated = {RgbView(out[0], out[1], out[2]), out[3]};
@@ -153,9 +319,9 @@ void run_reproject_rows(const ReprojectKernel& kernel, int width, int height) {
     compact.history = out[6];
     for (int y = y0; y < y1; ++y) {
       if (kernel.gradient_lambda)
-        reproject_row<true>(kernel, compact, y, fallback.data(), pending.data());
+        reproject_row<true>(kernel, compact, y, ints);
       else
-        reproject_row<false>(kernel, compact, y, fallback.data(), pending.data());
+        reproject_row<false>(kernel, compact, y, ints);
     }
   });
 }

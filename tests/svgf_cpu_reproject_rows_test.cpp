@@ -3,6 +3,8 @@
 // instruction-set variant this CPU runs: common pixels, disocclusions, taps off the image's
 // edges, NaN and far motion, the fallback's 3x3 block (found or not), every anti-lag, A-SVGF's
 // lambda.
+#include <algorithm>
+#include <array>
 #include <limits>
 #include <random>
 
@@ -145,6 +147,36 @@ std::pair<Frame, Frame> random_pair(int w, int h, uint32_t seed) {
   return {std::move(f), std::move(prev)};
 }
 
+// How the row driver can read the taps of 16-pixel chunks (row-aligned, as it cuts them): by
+// the window's shifts (none, in x, in y, both: kinds 0 to 3, kernels_cpu/svgf_reproject_rows.cpp)
+// or, where a pixel has no history, a tap lies outside or the taps spread further, through
+// gathers (kind 4). The share of chunks of each kind.
+std::array<double, 5> chunk_kinds(const ReprojectKernel& k) {
+  std::array<double, 5> share{};
+  int chunks = 0;
+  const int w = k.guides.width, h = k.guides.height;
+  for (int y = 0; y < h; ++y)
+    for (int x0 = 0; x0 + 16 <= w; x0 += 16, ++chunks) {
+      int dx_min = 1 << 30, dx_max = -dx_min, dy_min = dx_min, dy_max = -dx_min;
+      bool gather = false;
+      for (int x = x0; x < x0 + 16; ++x) {
+        float px = 0.f, py = 0.f;
+        gather |= !k.previous_position(x, y, k.guides.index(x, y), px, py);
+        const BilinearTaps taps = BilinearTaps::at(px, py);
+        gather |= !k.prev_guides.inside(taps.x0, taps.y0) ||
+                  !k.prev_guides.inside(taps.x0 + 1, taps.y0 + 1);
+        dx_min = std::min(dx_min, taps.x0 - x);
+        dx_max = std::max(dx_max, taps.x0 - x);
+        dy_min = std::min(dy_min, taps.y0 - y);
+        dy_max = std::max(dy_max, taps.y0 - y);
+      }
+      gather |= dx_max - dx_min > 1 || dy_max - dy_min > 1;
+      share[gather ? 4 : (dx_max - dx_min) + 2 * (dy_max - dy_min)] += 1;
+    }
+  for (double& s : share) s /= chunks;
+  return share;
+}
+
 }  // namespace
 
 TEST_CASE("cpu rows: reprojection rows equal the per-pixel kernel bitwise", "[cpu_rows]") {
@@ -200,5 +232,43 @@ TEST_CASE("cpu rows: reprojection rows equal the per-pixel kernel on fixtures", 
       CHECK(history_paths(k).all_taps > 0.5);
       require_rows_equal_pixels(k, std::string(name) + ", antilag " + std::to_string(int(antilag)));
     }
+  }
+}
+
+TEST_CASE("cpu rows: reprojection rows equal the per-pixel kernel under smooth motion",
+          "[cpu_rows]") {
+  // A camera's motion: smooth, each row's chunks reading their taps through a window's shifts
+  // (all four kinds) or, where the field turns steep, moves off the image or is NaN, through
+  // gathers; disocclusions and the 3x3 fallback as in the random frames.
+  const int w = 279, h = 47;  // 17 chunks and a part of one a row
+  auto [f, prev] = random_pair(w, h, 900);
+  std::mt19937 rng(901);
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      // Bands of 64 columns: the field flat along the row, sloped in x, in y, in both; then
+      // steep (2 or more pixels of spread in a chunk).
+      const int band = x / 64;
+      const float slope_x = band == 1 ? 0.045f : band == 3 ? 0.06f : band == 4 ? 0.2f : 0.f;
+      const float slope_y = band == 2 ? 0.035f : band == 3 ? 0.05f : 0.f;
+      const int i = y * w + x;
+      f.motion.plane(0)[i] = -2.3f + slope_x * (x - 64 * band) + 0.011f * y;
+      f.motion.plane(1)[i] = 1.7f + slope_y * (x - 64 * band) - 0.015f * y;
+      if (u(rng) < 0.002f) f.motion.plane(0)[i] = kNaN;
+    }
+  const History hist(w, h, 902);
+  Image out(w, h, 7), lambda(strata_along(w), strata_along(h), 1);
+  test::fill_uniform(lambda, -0.2f, 1.2f, 903);
+  const std::array<double, 5> kinds = chunk_kinds(kernel_for(f, prev, hist, out));
+  INFO(kinds[0] << " " << kinds[1] << " " << kinds[2] << " " << kinds[3] << " " << kinds[4]);
+  for (int kind = 0; kind < 5; ++kind) CHECK(kinds[kind] > 0.05);
+  const HistoryPaths paths = history_paths(kernel_for(f, prev, hist, out));
+  CHECK(paths.some_taps > 0.1);
+  CHECK(paths.fallback > 0.01);
+  for (bool with_lambda : {false, true}) {
+    ReprojectKernel k = kernel_for(f, prev, hist, out);
+    k.gradient_lambda = with_lambda ? lambda.plane(0) : nullptr;
+    if (with_lambda) k.previous_depth = {1.004f, -2e-5f, 3e-5f, -0.002f, 1e-5f, 0.f};
+    require_rows_equal_pixels(k, std::string("smooth motion") + (with_lambda ? ", lambda" : ""));
   }
 }

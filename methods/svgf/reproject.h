@@ -66,13 +66,23 @@ struct ReprojectKernel {
   SVGF_HD bool tap_consistent(const TapTest& t, int xp, int yp) const {
     return prev_guides.inside(xp, yp) && tap_matches(t, prev_guides.index(xp, yp));
   }
-  // The same for a previous pixel j inside the image: same mesh, similar depth and normal. All
-  // three tests are evaluated (no early exit), so a vectorized caller loads unconditionally.
-  SVGF_HD bool tap_matches(const TapTest& t, int j) const {
-    const bool same_mesh = t.mesh == prev_guides.mesh_id[j];
-    const bool near_depth = abs_f(t.depth_then - prev_guides.depth[j]) <= t.tolerance;  // NaN: no
-    const bool near_normal =
-        dot(t.normal, prev_guides.normal.load(j)) >= params.reproject_normal_cos;
+  // The same for a previous pixel j inside the image: same mesh, similar depth and normal.
+  SVGF_HD bool tap_matches(const TapTest& t, int j) const { return tap_matches(t, tap_guides(j)); }
+
+  // What the tests read of a previous pixel.
+  struct TapGuides {
+    uint32_t mesh;
+    float depth;
+    Vec3 normal;
+  };
+  SVGF_HD TapGuides tap_guides(int j) const {
+    return {prev_guides.mesh_id[j], prev_guides.depth[j], prev_guides.normal.load(j)};
+  }
+  // All three tests are evaluated (no early exit), so a vectorized caller loads unconditionally.
+  SVGF_HD bool tap_matches(const TapTest& t, const TapGuides& g) const {
+    const bool same_mesh = t.mesh == g.mesh;
+    const bool near_depth = abs_f(t.depth_then - g.depth) <= t.tolerance;  // NaN: no
+    const bool near_normal = dot(t.normal, g.normal) >= params.reproject_normal_cos;
     return same_mesh & near_depth & near_normal;
   }
 
@@ -82,6 +92,16 @@ struct ReprojectKernel {
     float length = 0.f;
     bool valid = false;
   };
+
+  // The history the previous frame left at pixel j: one tap's values.
+  SVGF_HD History tap_history(int j) const {
+    History h;
+    h.color = prev_color.load(j);
+    h.moments = make_vec2(prev_moment1[j], prev_moment2[j]);
+    h.length = prev_history[j];
+    h.valid = true;
+    return h;
+  }
 
   // Where pixel (x, y) lies in the previous frame, (px, py); false when it has no history to
   // read there (no surface, or motion far outside or NaN: no float-to-int conversion out of
@@ -94,9 +114,13 @@ struct ReprojectKernel {
 
   // Adds the previous frame's pixel j, weighted w, to the sums h and weight_sum.
   SVGF_HD void add_tap(History& h, float& weight_sum, int j, float w) const {
-    h.color += prev_color.load(j) * w;
-    h.moments += make_vec2(prev_moment1[j], prev_moment2[j]) * w;
-    h.length = h.length + prev_history[j] * w;
+    add_tap(h, weight_sum, tap_history(j), w);
+  }
+  // The same with the tap's values read: `tap` (tap_history), weighted w.
+  SVGF_HD static void add_tap(History& h, float& weight_sum, const History& tap, float w) {
+    h.color += tap.color * w;
+    h.moments += tap.moments * w;
+    h.length = h.length + tap.length * w;
     weight_sum = weight_sum + w;
   }
 
