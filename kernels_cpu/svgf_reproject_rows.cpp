@@ -3,8 +3,9 @@
 // built from the kernel's own pieces (methods/svgf/reproject.h: the same operations in the
 // same order): every pixel through its bilinear taps, then the pixels whose taps weigh too
 // little through the 3x3 fallback. A camera's motion field is smooth, so the taps of 16
-// neighbouring pixels mostly lie within a 3x3 window's shifts of them: such a chunk reads its
-// taps by contiguous loads and selects (same values), the others through gathers. The
+// neighbouring pixels mostly lie at one of a few shifts from them (up to 3 columns and 2 rows
+// apart): such a chunk reads its taps by contiguous loads and selects (same values), the
+// others through gathers. The
 // per-pixel kernel runs the stage under the statistics anti-lag and without history. Same bits
 // as the per-pixel kernel (tests/svgf_cpu_reproject_rows_test.cpp).
 #include <vector>
@@ -102,27 +103,33 @@ inline ReprojectKernel::History pick(bool c, const ReprojectKernel::History& a,
   return h;
 }
 
-// What read(j) gives at index j shifted right by sx and down by sy (0 or 1 each) in a frame
-// pw wide: four loads at indices contiguous along the chunk, and selects.
-template <class Read>
-inline auto read_shifted(const Read& read, int j, bool sx, bool sy, int pw) {
-  return pick(sy, pick(sx, read(j + pw + 1), read(j + pw)), pick(sx, read(j + 1), read(j)));
+// What read(j) gives at index j shifted right by sx (0 to kSpreadX) and down by sy (0, or 0 to
+// 1 with kShiftY) in a frame pw wide: loads at indices contiguous along the chunk, and selects.
+template <int kSpreadX, bool kShiftY, class Read>
+inline auto read_shifted(const Read& read, int j, int sx, bool sy, int pw) {
+  const auto along_row = [&](int r) {
+    auto v = read(r);
+    if (kSpreadX >= 1) v = pick(sx >= 1, read(r + 1), v);
+    if (kSpreadX >= 2) v = pick(sx >= 2, read(r + 2), v);
+    return v;
+  };
+  return kShiftY ? pick(sy, along_row(j + pw), along_row(j)) : along_row(j);
 }
 
 // Where the taps of the chunk of pixels x0.. lie: pixel x's top-left tap is (x + dx, y + dy)
-// with dx in dx_min and dx_min + 1 (only dx_min for a window without shift_x), dy in dy_min
-// and dy_min + 1 (only dy_min without shift_y), and all of the window's shifts inside the
-// previous frame (whether a pixel uses them or not, every load below is in bounds).
+// with dx from dx_min to dx_min + its kind's spread in x (0 to 2), dy from dy_min to dy_min +
+// its spread in y (0 or 1), and all of the window's shifts inside the previous frame (whether
+// a pixel uses them or not, every load below is in bounds).
 struct ChunkWindow {
   int x0, dx_min, dy_min;
 };
 
 // The chunks of row y whose taps lie in windows[0..n) through their bilinear taps as
 // reproject_bilinear reads them: each tap read at its shift of the window's top-left by
-// read_shifted, the same values, sums and outputs. kShiftX and kShiftY: whether the windows
-// have the shifts (a chunk without them needs no selects). One call a row and kind of window:
-// the setup is paid once, not per chunk.
-template <bool kLambda, bool kShiftX, bool kShiftY>
+// read_shifted, the same values, sums and outputs. kSpreadX and kShiftY: the windows' shifts
+// (a chunk without them needs no selects). One call a row and kind of window: the setup is
+// paid once, not per chunk.
+template <bool kLambda, int kSpreadX, bool kShiftY>
 SVGF_TAP_LOOP void reproject_bilinear_windows(const ReprojectKernel& kernel, int y,
                                               const ChunkWindow* __restrict windows, int n,
                                               int* __restrict fallback) {
@@ -144,7 +151,7 @@ SVGF_TAP_LOOP void reproject_bilinear_windows(const ReprojectKernel& kernel, int
       float px = 0.f, py = 0.f;
       k.previous_position(x, y, i, px, py);  // true: the window holds its taps
       const BilinearTaps taps = BilinearTaps::at(px, py);
-      const bool sx = kShiftX && taps.x0 != x + window.dx_min;
+      const int sx = kSpreadX > 0 ? taps.x0 - (x + window.dx_min) : 0;
       const bool sy = kShiftY && taps.y0 != y + window.dy_min;
       const ReprojectKernel::TapTest test = k.tap_test(x, y, i);
       History h;
@@ -154,9 +161,10 @@ SVGF_TAP_LOOP void reproject_bilinear_windows(const ReprojectKernel& kernel, int
         const int j = corner + l + (t & 1) + (t >> 1) * pw;
         History with = h;
         float with_sum = weight_sum;
-        ReprojectKernel::add_tap(with, with_sum, read_shifted(history_at, j, sx, sy, pw),
+        ReprojectKernel::add_tap(with, with_sum, read_shifted<kSpreadX, kShiftY>(history_at, j, sx, sy, pw),
                                  taps.weight(t));
-        take_if(k.tap_matches(test, read_shifted(guides_at, j, sx, sy, pw)), with, with_sum, h,
+        take_if(k.tap_matches(test, read_shifted<kSpreadX, kShiftY>(guides_at, j, sx, sy,
+                                                                     pw)), with, with_sum, h,
                 weight_sum);
       }
       const bool bilinear = weight_sum >= min_weight;
@@ -181,8 +189,8 @@ SVGF_TAP_LOOP void tap_shifts(const ReprojectKernel& kernel, int y, int* __restr
   }
 }
 
-// The kinds of window: 1 with a shift in x, 2 with one in y.
-constexpr int kWindowKinds = 4;
+// The kinds of window: the spread in x (0 to 2), plus 3 with a shift in y.
+constexpr int kWindowKinds = 6;
 
 // Whether the chunk of pixels x0.. of row y all moved and have their taps in one window inside
 // the previous frame: its kind, and the window; -1 where not.
@@ -198,10 +206,10 @@ int chunk_window(const ReprojectKernel& k, int y, int x0, const int* dx, const i
   }
   window = {x0, dx_min, dy_min};
   // The window's columns x0 + dx_min .. x0 + kChunk + dx_max, rows y + dy_min .. y + dy_max + 1.
-  const bool inside = all_moved && dx_max - dx_min <= 1 && dy_max - dy_min <= 1 &&
+  const bool inside = all_moved && dx_max - dx_min <= 2 && dy_max - dy_min <= 1 &&
                       x0 + dx_min >= 0 && x0 + kChunk + dx_max < k.prev_guides.width &&
                       y + dy_min >= 0 && y + dy_max + 1 < k.prev_guides.height;
-  return inside ? (dx_max - dx_min) + 2 * (dy_max - dy_min) : -1;
+  return inside ? (dx_max - dx_min) + 3 * (dy_max - dy_min) : -1;
 }
 
 // A row's scratch.
@@ -235,12 +243,16 @@ void reproject_bilinear_row(const ReprojectKernel& kernel, int y, RowInts& ints)
   }
   if (gather_from < w) reproject_bilinear<kLambda>(kernel, y, gather_from, w, fallback);
   const ChunkWindow* windows = ints.windows.data();
-  reproject_bilinear_windows<kLambda, false, false>(kernel, y, windows, count[0], fallback);
-  reproject_bilinear_windows<kLambda, true, false>(kernel, y, windows + room, count[1], fallback);
-  reproject_bilinear_windows<kLambda, false, true>(kernel, y, windows + 2 * room, count[2],
-                                                   fallback);
-  reproject_bilinear_windows<kLambda, true, true>(kernel, y, windows + 3 * room, count[3],
-                                                  fallback);
+  reproject_bilinear_windows<kLambda, 0, false>(kernel, y, windows, count[0], fallback);
+  reproject_bilinear_windows<kLambda, 1, false>(kernel, y, windows + room, count[1], fallback);
+  reproject_bilinear_windows<kLambda, 2, false>(kernel, y, windows + 2 * room, count[2],
+                                                fallback);
+  reproject_bilinear_windows<kLambda, 0, true>(kernel, y, windows + 3 * room, count[3],
+                                               fallback);
+  reproject_bilinear_windows<kLambda, 1, true>(kernel, y, windows + 4 * room, count[4],
+                                               fallback);
+  reproject_bilinear_windows<kLambda, 2, true>(kernel, y, windows + 5 * room, count[5],
+                                               fallback);
 }
 
 // read_history's fallback for the pixels x = pending[0..n) of row y, one a lane, the same

@@ -226,15 +226,71 @@ void atrous_row(const AtrousKernel& k, const float* __restrict lum, int y, RowSc
 
 // --- spatial variance estimate -----------------------------------------------------------------
 
-// The 7x7 estimate for the pixels lo..hi of row y (the centre terms and the taps; the caller
-// selects which results to keep).
+// Every pixel of a row as the steady state passes it on: the accumulated color, and the
+// temporal variance (a division a pixel). Restrict, with the planes offset to the row, like the
+// a-trous's loops (vectorized; it was scalar). The estimate overwrites the young pixels.
+SVGF_TAP_LOOP void variance_pass_through(const float* __restrict cr, const float* __restrict cg,
+                                         const float* __restrict cb,
+                                         const float* __restrict var_in,
+                                         const float* __restrict history, float* __restrict out_r,
+                                         float* __restrict out_g, float* __restrict out_b,
+                                         float* __restrict out_v, int w, SvgfParams p) {
+  for (int x = 0; x < w; ++x) {
+    out_r[x] = cr[x];
+    out_g[x] = cg[x];
+    out_b[x] = cb[x];
+    out_v[x] = temporal_variance(p, var_in[x], history[x]);
+  }
+}
+
+// The estimate's centre terms for the pixels of a span: 1 / phi_z, and the sums at 0. Offset to
+// the span's first pixel, likewise.
+SVGF_TAP_LOOP void variance_span_start(const float* __restrict depth_dx,
+                                       const float* __restrict depth_dy,
+                                       float* __restrict inv_phi_z, float* __restrict sw,
+                                       float* __restrict sr, float* __restrict sg,
+                                       float* __restrict sb, float* __restrict sm1,
+                                       float* __restrict sm2, int n, SvgfParams p) {
+  for (int x = 0; x < n; ++x) {
+    inv_phi_z[x] = inv_depth_tolerance(p.spatial_variance_phi_depth,
+                                       depth_fwidth_of(depth_dx[x], depth_dy[x]),
+                                       p.depth_gradient_floor);
+    sw[x] = sr[x] = sg[x] = sb[x] = sm1[x] = sm2[x] = 0.f;
+  }
+}
+
+// The estimate's results for the pixels of a span, the per-pixel kernel's last lines, where
+// they are young and on a surface; the others keep what the pass-through wrote (a select, so
+// the loop vectorizes: 5 divisions a pixel). Offset to the span's first pixel, likewise.
+SVGF_TAP_LOOP void variance_span_finish(const float* __restrict depth,
+                                        const float* __restrict history,
+                                        const float* __restrict sw, const float* __restrict sr,
+                                        const float* __restrict sg, const float* __restrict sb,
+                                        const float* __restrict sm1,
+                                        const float* __restrict sm2, float* __restrict out_r,
+                                        float* __restrict out_g, float* __restrict out_b,
+                                        float* __restrict out_v, int n, SvgfParams p) {
+  const float young = static_cast<float>(p.spatial_variance_history);
+  for (int x = 0; x < n; ++x) {
+    const float hist = history[x];
+    const bool estimated = (hist < young) & has_surface(depth[x]);
+    const float ws = max_f(sw[x], 1e-6f);
+    const float m1 = sm1[x] / ws, m2 = sm2[x] / ws;
+    out_r[x] = estimated ? sr[x] / ws : out_r[x];
+    out_g[x] = estimated ? sg[x] / ws : out_g[x];
+    out_b[x] = estimated ? sb[x] / ws : out_b[x];
+    out_v[x] = estimated ? spatial_variance(p, m1, m2, hist) : out_v[x];
+  }
+}
+
+// The 7x7 estimate for the pixels lo..hi of row y (the centre terms and the taps; the results
+// where the pixel is young and on a surface).
 template <class Power>
 void variance_span(const VarianceKernel& k, const float* __restrict lum, int y, int lo, int hi,
                    RowScratch& s, const Power& power) {
   const GuideView& g = k.guides;
   const SvgfParams& p = k.params;
   const int w = g.width, h = g.height, row = y * w;
-  const float young = static_cast<float>(p.spatial_variance_history);
   float* __restrict inv_phi_z = s[0];
   float* __restrict sw = s[2];
   float* __restrict sr = s[3];
@@ -242,11 +298,8 @@ void variance_span(const VarianceKernel& k, const float* __restrict lum, int y, 
   float* __restrict sb = s[5];
   float* __restrict sm1 = s[6];
   float* __restrict sm2 = s[1];
-  for (int x = lo; x < hi; ++x) {
-    inv_phi_z[x] = inv_depth_tolerance(p.spatial_variance_phi_depth, g.depth_fwidth(row + x),
-                                       p.depth_gradient_floor);
-    sw[x] = sr[x] = sg[x] = sb[x] = sm1[x] = sm2[x] = 0.f;
-  }
+  variance_span_start(g.depth_dx + row + lo, g.depth_dy + row + lo, inv_phi_z + lo, sw + lo,
+                      sr + lo, sg + lo, sb + lo, sm1 + lo, sm2 + lo, hi - lo, p);
   const float inv_phi_l = 1.f / p.phi_color;
   const int r = p.spatial_variance_radius;
   for (int dy = -r; dy <= r; ++dy) {
@@ -260,15 +313,10 @@ void variance_span(const VarianceKernel& k, const float* __restrict lum, int y, 
                    inv_tap_distance(dx, dy, 1), power);
     }
   }
-  for (int x = lo; x < hi; ++x) {
-    const int i = row + x;
-    const float hist = k.history[i];
-    if (!(hist < young) || !g.is_surface(i)) continue;  // passed through by the caller
-    const float ws = max_f(sw[x], 1e-6f);
-    const float m1 = sm1[x] / ws, m2 = sm2[x] / ws;
-    k.out.color.store(i, make_vec3(sr[x] / ws, sg[x] / ws, sb[x] / ws));
-    k.out.variance[i] = spatial_variance(p, m1, m2, hist);
-  }
+  const int at = row + lo;
+  variance_span_finish(g.depth + at, k.history + at, sw + lo, sr + lo, sg + lo, sb + lo,
+                       sm1 + lo, sm2 + lo, k.out.color.r + at, k.out.color.g + at,
+                       k.out.color.b + at, k.out.variance + at, hi - lo, p);
 }
 
 template <class Power>
@@ -277,11 +325,10 @@ void variance_row(const VarianceKernel& k, const float* __restrict lum, int y, R
   const GuideView& g = k.guides;
   const int w = g.width, row = y * w;
   const float young = static_cast<float>(k.params.spatial_variance_history);
-  for (int x = 0; x < w; ++x) {  // pass-through; the estimate overwrites young pixels below
-    const int i = row + x;
-    k.out.color.store(i, k.accumulated.color.load(i));
-    k.out.variance[i] = temporal_variance(k.params, k.accumulated.variance[i], k.history[i]);
-  }
+  variance_pass_through(k.accumulated.color.r + row, k.accumulated.color.g + row,
+                        k.accumulated.color.b + row, k.accumulated.variance + row,
+                        k.history + row, k.out.color.r + row, k.out.color.g + row,
+                        k.out.color.b + row, k.out.variance + row, w, k.params);
   // The 7x7 work runs only over runs of pixels that need it (young history on a surface): after
   // a disocclusion, or at the edge a camera pan uncovers, they are short. Runs closer than
   // kGap pixels share one span (fewer, longer vector loops).

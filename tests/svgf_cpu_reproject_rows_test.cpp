@@ -147,12 +147,12 @@ std::pair<Frame, Frame> random_pair(int w, int h, uint32_t seed) {
   return {std::move(f), std::move(prev)};
 }
 
-// How the row driver can read the taps of 16-pixel chunks (row-aligned, as it cuts them): by
-// the window's shifts (none, in x, in y, both: kinds 0 to 3, kernels_cpu/svgf_reproject_rows.cpp)
-// or, where a pixel has no history, a tap lies outside or the taps spread further, through
-// gathers (kind 4). The share of chunks of each kind.
-std::array<double, 5> chunk_kinds(const ReprojectKernel& k) {
-  std::array<double, 5> share{};
+// How the row driver can read the taps of 16-pixel chunks (row-aligned, as it cuts them): by a
+// window's shifts (kind: the taps' spread in x, 0 to 2, plus 3 where they spread a row in y,
+// kernels_cpu/svgf_reproject_rows.cpp) or, where a pixel has no history, a tap lies outside or
+// the taps spread further, through gathers (kind 6). The share of chunks of each kind.
+std::array<double, 7> chunk_kinds(const ReprojectKernel& k) {
+  std::array<double, 7> share{};
   int chunks = 0;
   const int w = k.guides.width, h = k.guides.height;
   for (int y = 0; y < h; ++y)
@@ -170,8 +170,8 @@ std::array<double, 5> chunk_kinds(const ReprojectKernel& k) {
         dy_min = std::min(dy_min, taps.y0 - y);
         dy_max = std::max(dy_max, taps.y0 - y);
       }
-      gather |= dx_max - dx_min > 1 || dy_max - dy_min > 1;
-      share[gather ? 4 : (dx_max - dx_min) + 2 * (dy_max - dy_min)] += 1;
+      gather |= dx_max - dx_min > 2 || dy_max - dy_min > 1;
+      share[gather ? 6 : (dx_max - dx_min) + 3 * (dy_max - dy_min)] += 1;
     }
   for (double& s : share) s /= chunks;
   return share;
@@ -240,17 +240,18 @@ TEST_CASE("cpu rows: reprojection rows equal the per-pixel kernel under smooth m
   // A camera's motion: smooth, each row's chunks reading their taps through a window's shifts
   // (all four kinds) or, where the field turns steep, moves off the image or is NaN, through
   // gathers; disocclusions and the 3x3 fallback as in the random frames.
-  const int w = 279, h = 47;  // 17 chunks and a part of one a row
+  const int w = 455, h = 47;  // 28 chunks and a part of one a row
   auto [f, prev] = random_pair(w, h, 900);
   std::mt19937 rng(901);
   std::uniform_real_distribution<float> u(0.f, 1.f);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
-      // Bands of 64 columns: the field flat along the row, sloped in x, in y, in both; then
-      // steep (2 or more pixels of spread in a chunk).
+      // Bands of 64 columns: the field flat along the row, sloped in x, in y, in both, steeper
+      // in x (2 pixels of spread in a chunk), that and sloped in y; then steep (3 or more).
       const int band = x / 64;
-      const float slope_x = band == 1 ? 0.045f : band == 3 ? 0.06f : band == 4 ? 0.2f : 0.f;
-      const float slope_y = band == 2 ? 0.035f : band == 3 ? 0.05f : 0.f;
+      const float slopes_x[] = {0.f, 0.045f, 0.f, 0.06f, 0.11f, 0.11f, 0.25f, 0.25f};
+      const float slopes_y[] = {0.f, 0.f, 0.035f, 0.05f, 0.f, 0.05f, 0.f, 0.f};
+      const float slope_x = slopes_x[band], slope_y = slopes_y[band];
       const int i = y * w + x;
       f.motion.plane(0)[i] = -2.3f + slope_x * (x - 64 * band) + 0.011f * y;
       f.motion.plane(1)[i] = 1.7f + slope_y * (x - 64 * band) - 0.015f * y;
@@ -259,9 +260,11 @@ TEST_CASE("cpu rows: reprojection rows equal the per-pixel kernel under smooth m
   const History hist(w, h, 902);
   Image out(w, h, 7), lambda(strata_along(w), strata_along(h), 1);
   test::fill_uniform(lambda, -0.2f, 1.2f, 903);
-  const std::array<double, 5> kinds = chunk_kinds(kernel_for(f, prev, hist, out));
-  INFO(kinds[0] << " " << kinds[1] << " " << kinds[2] << " " << kinds[3] << " " << kinds[4]);
-  for (int kind = 0; kind < 5; ++kind) CHECK(kinds[kind] > 0.05);
+  const std::array<double, 7> kinds = chunk_kinds(kernel_for(f, prev, hist, out));
+  for (int kind = 0; kind < 7; ++kind) {
+    INFO("chunks of kind " << kind);
+    CHECK(kinds[kind] > 0.03);
+  }
   const HistoryPaths paths = history_paths(kernel_for(f, prev, hist, out));
   CHECK(paths.some_taps > 0.1);
   CHECK(paths.fallback > 0.01);
