@@ -3,17 +3,50 @@
 // runs its interior strata (all nine taps inside the stratum image) as one vector loop: every
 // tap's weight by the kernel's own functions, added by a select where the kernel adds it, so a
 // skipped tap leaves the sums untouched (adding 0 would not: -0, Inf * 0, NaN * 0), the same
-// terms in the same order. The border strata and the rows near the top and bottom run the
-// per-stratum kernel. Same bits as the kernel (tests/svgf_cpu_gradient_rows_test.cpp).
+// terms in the same order. A stratum's guides lie at its sample's pixel, one pixel of nine at a
+// per-stratum offset: they are gathered once a pass into planes over the strata, so the taps
+// load them contiguously (nine gathers a stratum were the stage's cost). The border strata and
+// the rows near the top and bottom run the per-stratum kernel. Same bits as the kernel
+// (tests/svgf_cpu_gradient_rows_test.cpp).
+#include <vector>
+
 #include "kernels_cpu/row_tools.h"
 #include "kernels_cpu/svgf_rows.h"
 
 namespace svgf::cpu {
 namespace {
 
+// The guides the taps read, per stratum (at its sample's pixel, StratumGuides::pixel).
+struct StrataGuides {
+  std::vector<float> depth, nx, ny, nz;
+  std::vector<uint32_t> mesh;
+  explicit StrataGuides(size_t n) : depth(n), nx(n), ny(n), nz(n), mesh(n) {}
+};
+
+// Stratum row sy (sw strata): its guides gathered.
+SVGF_TAP_LOOP void gather_strata_guides(const GradientAtrousKernel& kernel, int sy, int sw,
+                                        float* __restrict depth, float* __restrict nx,
+                                        float* __restrict ny, float* __restrict nz,
+                                        uint32_t* __restrict mesh) {
+  const GradientAtrousKernel k = kernel;
+  for (int sx = 0; sx < sw; ++sx) {
+    const int s = sy * sw + sx, p = k.at.pixel(sx, sy);
+    depth[s] = k.guides.depth[p];
+    nx[s] = k.guides.normal.r[p];
+    ny[s] = k.guides.normal.g[p];
+    nz[s] = k.guides.normal.b[p];
+    mesh[s] = k.guides.mesh_id[p];
+  }
+}
+
 // Strata x0..x1 of stratum row sy, all of whose taps lie inside.
 template <class Power>
-SVGF_TAP_LOOP void gradient_atrous_interior(const GradientAtrousKernel& kernel, int sy, int x0,
+SVGF_TAP_LOOP void gradient_atrous_interior(const GradientAtrousKernel& kernel,
+                                            const float* __restrict depth,
+                                            const float* __restrict nx,
+                                            const float* __restrict ny,
+                                            const float* __restrict nz,
+                                            const uint32_t* __restrict mesh_of, int sy, int x0,
                                             int x1, const Power& power) {
   const GradientAtrousKernel k = kernel;  // a local copy: its plane pointers stay in registers
   const int sw = k.at.strata_width, step = k.step;
@@ -21,22 +54,20 @@ SVGF_TAP_LOOP void gradient_atrous_interior(const GradientAtrousKernel& kernel, 
   for (int sx = x0; sx < x1; ++sx) {
     const int s = sy * sw + sx;
     const int p = k.at.pixel(sx, sy);
-    const EdgeSample c{k.guides.depth[p], k.guides.normal.load(p), 0.f};
-    const uint32_t mesh = k.guides.mesh_id[p];
+    const EdgeSample c{depth[s], make_vec3(nx[s], ny[s], nz[s]), 0.f};
+    const uint32_t mesh = mesh_of[s];
     const float inv_phi_z = inv_depth_tolerance<ExactArith>(k.phi_depth, k.guides.depth_fwidth(p),
                                                             k.depth_gradient_floor);
     float weight_sum = 0.f, delta = 0.f, normalizer = 0.f;
 #pragma GCC unroll 9
     for (int t = 0; t < 9; ++t) {  // dy outer, dx inner, as the kernel
       const int dx = t % 3 - 1, dy = t / 3 - 1;
-      const int qx = sx + dx * step, qy = sy + dy * step;
-      const int q = qy * sw + qx;
-      const int pq = k.at.pixel(qx, qy);
+      const int q = s + (dy * sw + dx) * step;
       const bool centre = dx == 0 && dy == 0;
-      const EdgeSample e{k.guides.depth[pq], k.guides.normal.load(pq), 0.f};
+      const EdgeSample e{depth[q], make_vec3(nx[q], ny[q], nz[q]), 0.f};
       const float scale = ExactArith::tap_depth_scale(inv_phi_z, dx, dy, step * kGradientStratum);
       const float w = centre ? 1.f : edge_stopping_weight<RowExactArith>(c, e, scale, power, 0.f);
-      const bool take = (k.in.weight[q] > 0.f) & (centre | (k.guides.mesh_id[pq] == mesh));
+      const bool take = (k.in.weight[q] > 0.f) & (centre | (mesh_of[q] == mesh));
       const float with_sum = weight_sum + w;
       const float with_delta = delta + k.in.delta[q] * w;
       const float with_normalizer = normalizer + k.in.normalizer[q] * w;
@@ -52,13 +83,16 @@ SVGF_TAP_LOOP void gradient_atrous_interior(const GradientAtrousKernel& kernel, 
 }
 
 template <class Power>
-void gradient_atrous_row(const GradientAtrousKernel& k, int sy, const Power& power) {
+void gradient_atrous_row(const GradientAtrousKernel& k, const StrataGuides& g, int sy,
+                         const Power& power) {
   const int sw = k.at.strata_width, step = k.step;
   const bool inside_y = sy - step >= 0 && sy + step < k.strata_height;
   const int x0 = inside_y ? (step < sw ? step : sw) : sw;  // [x0, x1): interior strata
   const int x1 = inside_y && sw - step > x0 ? sw - step : x0;
   for (int sx = 0; sx < x0; ++sx) k(sx, sy);
-  if (x1 > x0) gradient_atrous_interior(k, sy, x0, x1, power);
+  if (x1 > x0)
+    gradient_atrous_interior(k, g.depth.data(), g.nx.data(), g.ny.data(), g.nz.data(),
+                             g.mesh.data(), sy, x0, x1, power);
   for (int sx = x1; sx < sw; ++sx) k(sx, sy);
 }
 
@@ -67,9 +101,17 @@ void gradient_atrous_row(const GradientAtrousKernel& k, int sy, const Power& pow
 void run_gradient_atrous_rows(const GradientAtrousKernel& kernel, int strata_width,
                               int strata_height) {
   (void)strata_width;  // the kernel's own (at.strata_width, strata_height) are the image
+  (void)strata_height;
+  const int sw = kernel.at.strata_width, sh = kernel.strata_height;
+  StrataGuides g(static_cast<size_t>(sw) * static_cast<size_t>(sh));
+  parallel_rows(sh, [&](int y0, int y1) {
+    for (int sy = y0; sy < y1; ++sy)
+      gather_strata_guides(kernel, sy, sw, g.depth.data(), g.nx.data(), g.ny.data(),
+                           g.nz.data(), g.mesh.data());
+  });
   with_normal_power(kernel.phi_normal, [&](const auto& power) {
-    parallel_rows(strata_height, [&](int y0, int y1) {
-      for (int sy = y0; sy < y1; ++sy) gradient_atrous_row(kernel, sy, power);
+    parallel_rows(sh, [&](int y0, int y1) {
+      for (int sy = y0; sy < y1; ++sy) gradient_atrous_row(kernel, g, sy, power);
     });
   });
 }
