@@ -169,6 +169,10 @@ void run_gradient_atrous_rows(const GradientAtrousKernel& kernel, int strata_wid
                               int strata_height) {
   pick_variant("").gradient_atrous_rows(kernel, strata_width, strata_height);
 }
+void run_gradient_lambda_rows(const GradientLambdaKernel& kernel, int strata_width,
+                              int strata_height) {
+  pick_variant("").gradient_lambda_rows(kernel, strata_width, strata_height);
+}
 void run_wavelet_rows(const WaveletExactIteration& kernel, int width, int height) {
   pick_variant("").wavelet_rows(kernel, width, height);
 }

@@ -42,6 +42,7 @@ struct CpuVariant {
   void (*variance_rows)(const VarianceKernel&, int, int);
   void (*reproject_rows)(const ReprojectKernel&, int, int);
   void (*gradient_atrous_rows)(const GradientAtrousKernel&, int, int);
+  void (*gradient_lambda_rows)(const GradientLambdaKernel&, int, int);
   void (*wavelet_rows)(const WaveletExactIteration&, int, int);
   void (*jbf_rows)(const JbfPass<ExactArith>&, int, int);
   Tallies (*sanitize_rows)(const SanitizeInputs&, int, int);

@@ -6,8 +6,10 @@
 // terms in the same order. A stratum's guides lie at its sample's pixel, one pixel of nine at a
 // per-stratum offset: they are gathered once a pass into planes over the strata, so the taps
 // load them contiguously (nine gathers a stratum were the stage's cost). The border strata and
-// the rows near the top and bottom run the per-stratum kernel. Same bits as the kernel
-// (tests/svgf_cpu_gradient_rows_test.cpp).
+// the rows near the top and bottom run the per-stratum kernel. The lambda stage likewise: each
+// stratum's own lambda (a division) once, not once for every neighbour that reads it, then the
+// neighbourhood's maximum in the kernel's order, a tap at a time along a row. Same bits as the
+// kernels (tests/svgf_cpu_gradient_rows_test.cpp).
 #include <vector>
 
 #include "kernels_cpu/row_tools.h"
@@ -96,7 +98,57 @@ void gradient_atrous_row(const GradientAtrousKernel& k, const StrataGuides& g, i
   for (int sx = x1; sx < sw; ++sx) k(sx, sy);
 }
 
+// Stratum row sy's own lambdas (GradientLambdaKernel::lambda_of), at own[0..sw).
+SVGF_TAP_LOOP void own_lambdas(const float* __restrict delta, const float* __restrict normalizer,
+                               const float* __restrict weight, float* __restrict own, int sw) {
+  for (int sx = 0; sx < sw; ++sx)
+    own[sx] = weight[sx] > 0.f ? gradient_lambda(delta[sx], normalizer[sx]) : 0.f;
+}
+
+// out[x] = max_f(out[x], tap[x]) for x in 0..n: one neighbour of a row of strata, in order.
+SVGF_TAP_LOOP void max_tap(const float* __restrict tap, float* __restrict out, int n) {
+  for (int x = 0; x < n; ++x) out[x] = max_f(out[x], tap[x]);
+}
+
+// Stratum row sy of the lambda stage: the interior strata (the whole neighbourhood inside) by
+// max_tap over the own lambdas, a neighbour at a time in the kernel's order (the centre first,
+// then dy outer, dx inner, the centre again: max_f is not symmetric in NaN, so the order is
+// kept); the others by the kernel.
+void gradient_lambda_row(const GradientLambdaKernel& k, const float* own, int sy) {
+  const int sw = k.strata_width, r = k.radius;
+  const bool inside_y = sy - r >= 0 && sy + r < k.strata_height;
+  const int x0 = inside_y ? (r < sw ? r : sw) : sw;  // [x0, x1): interior strata
+  const int x1 = inside_y && sw - r > x0 ? sw - r : x0;
+  for (int sx = 0; sx < x0; ++sx) k(sx, sy);
+  if (x1 > x0) {
+    float* out = k.lambda + sy * sw + x0;
+    const float* centre = own + sy * sw + x0;
+    for (int x = 0; x < x1 - x0; ++x) out[x] = centre[x];
+    for (int dy = -r; dy <= r; ++dy)
+      for (int dx = -r; dx <= r; ++dx) max_tap(centre + dy * sw + dx, out, x1 - x0);
+  }
+  for (int sx = x1; sx < sw; ++sx) k(sx, sy);
+}
+
 }  // namespace
+
+void run_gradient_lambda_rows(const GradientLambdaKernel& kernel, int strata_width,
+                              int strata_height) {
+  (void)strata_width;  // the kernel's own (strata_width, strata_height) are the image
+  (void)strata_height;
+  const int sw = kernel.strata_width, sh = kernel.strata_height;
+  std::vector<float> own(static_cast<size_t>(sw) * static_cast<size_t>(sh));
+  parallel_rows(sh, [&](int y0, int y1) {
+    for (int sy = y0; sy < y1; ++sy) {
+      const int s = sy * sw;
+      own_lambdas(kernel.in.delta + s, kernel.in.normalizer + s, kernel.in.weight + s,
+                  own.data() + s, sw);
+    }
+  });
+  parallel_rows(sh, [&](int y0, int y1) {
+    for (int sy = y0; sy < y1; ++sy) gradient_lambda_row(kernel, own.data(), sy);
+  });
+}
 
 void run_gradient_atrous_rows(const GradientAtrousKernel& kernel, int strata_width,
                               int strata_height) {

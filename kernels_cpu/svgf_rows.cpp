@@ -348,11 +348,18 @@ void variance_row(const VarianceKernel& k, const float* __restrict lum, int y, R
   if (lo >= 0) variance_span(k, lum, y, lo, hi, s, power);
 }
 
+// Luminances of n pixels (restrict: vectorized).
+SVGF_TAP_LOOP void luminance_span(const float* __restrict r, const float* __restrict g,
+                                  const float* __restrict b, float* __restrict lum, int n) {
+  for (int i = 0; i < n; ++i) lum[i] = luminance(make_vec3(r[i], g[i], b[i]));
+}
+
 // Luminance of every pixel of `color`, once per stage instead of once per tap.
 std::vector<float> luminance_plane(ConstRgbView color, int w, int h) {
   std::vector<float> lum(static_cast<size_t>(w) * h);
   parallel_rows(h, [&](int y0, int y1) {
-    for (int i = y0 * w; i < y1 * w; ++i) lum[i] = luminance(color.load(i));
+    const int i = y0 * w;
+    luminance_span(color.r + i, color.g + i, color.b + i, lum.data() + i, (y1 - y0) * w);
   });
   return lum;
 }

@@ -8,7 +8,7 @@
 // checks it), and so the GPU's. The CPU engine picks them through PixelDriver.
 // The reprojection's row driver (svgf_reproject_rows.cpp) runs its per-pixel kernel's history
 // reads (bilinear taps, 3x3 fallback) and its blend as vector code over a row; A-SVGF's
-// gradient a-trous (svgf_gradient_rows.cpp) its interior strata.
+// gradient a-trous and lambda stages (svgf_gradient_rows.cpp) their interior strata.
 #include "kernels_cpu/cpu_engine.h"
 #include "methods/svgf/atrous.h"
 #include "methods/svgf/gradient.h"
@@ -22,6 +22,8 @@ void run_variance_rows(const VarianceKernel& kernel, int width, int height);
 void run_reproject_rows(const ReprojectKernel& kernel, int width, int height);
 void run_gradient_atrous_rows(const GradientAtrousKernel& kernel, int strata_width,
                               int strata_height);
+void run_gradient_lambda_rows(const GradientLambdaKernel& kernel, int strata_width,
+                              int strata_height);
 
 template <>
 struct PixelDriver<ReprojectKernel> {
@@ -32,6 +34,13 @@ template <>
 struct PixelDriver<GradientAtrousKernel> {
   static void run(const GradientAtrousKernel& k, int w, int h) {
     run_gradient_atrous_rows(k, w, h);
+  }
+};
+
+template <>
+struct PixelDriver<GradientLambdaKernel> {
+  static void run(const GradientLambdaKernel& k, int w, int h) {
+    run_gradient_lambda_rows(k, w, h);
   }
 };
 

@@ -1,7 +1,8 @@
-// A-SVGF's gradient a-trous row driver (kernels_cpu/svgf_gradient_rows.cpp) must give the
-// per-stratum kernel's bits exactly (the kernel is what the GPU runs), on every instruction-set
-// variant this CPU runs: strata without data, taps on other meshes, NaN / Inf / -0 in the
-// planes and guides, stratum images narrower or lower than the taps' reach, every step.
+// A-SVGF's gradient a-trous and lambda row drivers (kernels_cpu/svgf_gradient_rows.cpp) must
+// give the per-stratum kernels' bits exactly (the kernels are what the GPU runs), on every
+// instruction-set variant this CPU runs: strata without data, taps on other meshes, NaN / Inf /
+// -0 in the planes and guides, stratum images narrower or lower than the taps' reach, every
+// step and radius.
 #include <cmath>
 #include <limits>
 #include <random>
@@ -116,5 +117,36 @@ TEST_CASE("cpu rows: gradient a-trous rows equal the per-stratum kernel bitwise"
           }
           REQUIRE(variants > 0);
         }
+  }
+}
+
+TEST_CASE("cpu rows: gradient lambda rows equal the per-stratum kernel bitwise", "[cpu_rows]") {
+  // The neighbourhood's maximum of lambdas with NaN among them (max_f keeps the order's NaN
+  // rule), strata without data, every radius, images narrower and lower than its reach.
+  const int sizes[][2] = {{45, 17}, {133, 43}, {3, 20}, {20, 3}, {1, 1}, {7, 7}};
+  uint32_t seed = 800;
+  for (const auto& size : sizes) {
+    const int sw = size[0], sh = size[1];
+    const Image in = random_planes(sw, sh, ++seed);
+    for (int radius = 0; radius <= 3; ++radius) {
+      const std::string what = std::to_string(sw) + "x" + std::to_string(sh) + " strata, radius " +
+                               std::to_string(radius);
+      Image expected(sw, sh, 1, -1.f);
+      const GradientLambdaKernel k{sw, GradientPlanes<const float>(in.plane(0), in.plane(1),
+                                                                   in.plane(2)),
+                                   expected.plane(0), sh, radius};
+      cpu::for_each_pixel(sw, sh, k);
+      int variants = 0;
+      for (const cpu::CpuVariant* v : cpu::built_variants()) {
+        if (!cpu::runs_here(*v)) continue;
+        Image got(sw, sh, 1, -2.f);
+        GradientLambdaKernel r = k;
+        r.lambda = got.plane(0);
+        v->gradient_lambda_rows(r, sw, sh);
+        test::require_identical(got, expected, what + " on " + v->name);
+        ++variants;
+      }
+      REQUIRE(variants > 0);
+    }
   }
 }
