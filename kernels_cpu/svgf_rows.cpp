@@ -102,6 +102,51 @@ SVGF_TAP_LOOP void variance_tap(const float* __restrict depth, const float* __re
   }
 }
 
+// The seven taps dx = -3..3 of one tap row of the 7x7 estimate (its default radius), for pixels
+// x0..x1 whose seven taps all lie inside the image: the same terms in the same order as seven
+// variance_tap calls, with the centre and the running sums held in registers across the seven
+// (as atrous_tap_row).
+template <class Power>
+SVGF_TAP_LOOP void variance_tap_row(const float* __restrict depth, const float* __restrict nx,
+                                    const float* __restrict ny, const float* __restrict nz,
+                                    const float* __restrict lum, const float* __restrict cr,
+                                    const float* __restrict cg, const float* __restrict cb,
+                                    const float* __restrict m1_in, const float* __restrict m2_in,
+                                    const float* __restrict inv_phi_z, float inv_phi_l,
+                                    float* __restrict sw, float* __restrict sr,
+                                    float* __restrict sg, float* __restrict sb,
+                                    float* __restrict sm1, float* __restrict sm2, int row,
+                                    int row_offset, int x0, int x1, const float* inv_dist,
+                                    const Power& power) {
+  float d[7];
+  for (int t = 0; t < 7; ++t) d[t] = inv_dist[t];
+  for (int x = x0; x < x1; ++x) {
+    const int i = row + x;
+    const EdgeSample c{depth[i], make_vec3(nx[i], ny[i], nz[i]), lum[i]};
+    const float ipz = inv_phi_z[x];
+    float w_sum = sw[x], r_sum = sr[x], g_sum = sg[x], b_sum = sb[x], m1_sum = sm1[x],
+          m2_sum = sm2[x];
+#pragma GCC unroll 7
+    for (int t = 0; t < 7; ++t) {
+      const int j = i + row_offset + t - 3;
+      const EdgeSample q{depth[j], make_vec3(nx[j], ny[j], nz[j]), lum[j]};
+      const float wt = edge_stopping_weight<RowExactArith>(c, q, ipz * d[t], power, inv_phi_l);
+      w_sum = w_sum + wt;
+      r_sum = r_sum + cr[j] * wt;
+      g_sum = g_sum + cg[j] * wt;
+      b_sum = b_sum + cb[j] * wt;
+      m1_sum = m1_sum + m1_in[j] * wt;
+      m2_sum = m2_sum + m2_in[j] * wt;
+    }
+    sw[x] = w_sum;
+    sr[x] = r_sum;
+    sg[x] = g_sum;
+    sb[x] = b_sum;
+    sm1[x] = m1_sum;
+    sm2[x] = m2_sum;
+  }
+}
+
 // --- a-trous ---------------------------------------------------------------------------------
 
 // A row's centre terms, the per-pixel kernel's first lines: 1 / phi_l from the prefiltered
@@ -302,15 +347,34 @@ void variance_span(const VarianceKernel& k, const float* __restrict lum, int y, 
                       sr + lo, sg + lo, sb + lo, sm1 + lo, sm2 + lo, hi - lo, p);
   const float inv_phi_l = 1.f / p.phi_color;
   const int r = p.spatial_variance_radius;
+  // At the default radius, the pixels whose seven taps in x all lie inside take a tap row's
+  // seven at once; the others (and every pixel at another radius) one tap at a time. Each
+  // pixel still adds dx = -r..r in order.
+  constexpr int kRowRadius = 3;
+  const bool rows = r == kRowRadius;
+  const int inner0 = rows ? std::min(hi, std::max(lo, kRowRadius)) : hi;
+  const int inner1 = rows ? std::max(inner0, std::min(hi, w - kRowRadius)) : hi;
+  const ConstRgbView c = k.accumulated.color;
   for (int dy = -r; dy <= r; ++dy) {
     const int yq = y + dy;
     if (yq < 0 || yq >= h) continue;
+    float inv_dist[2 * kRowRadius + 1];
+    if (rows) {
+      for (int dx = -r; dx <= r; ++dx) inv_dist[dx + r] = inv_tap_distance(dx, dy, 1);
+      variance_tap_row(g.depth, g.normal.r, g.normal.g, g.normal.b, lum, c.r, c.g, c.b,
+                       k.moment1, k.moment2, inv_phi_z, inv_phi_l, sw, sr, sg, sb, sm1, sm2, row,
+                       dy * w, inner0, inner1, inv_dist, power);
+    }
     for (int dx = -r; dx <= r; ++dx) {
       const int x0 = std::max(lo, -dx), x1 = std::min(hi, w - dx);
-      variance_tap(g.depth, g.normal.r, g.normal.g, g.normal.b, lum, k.accumulated.color.r,
-                   k.accumulated.color.g, k.accumulated.color.b, k.moment1, k.moment2, inv_phi_z,
-                   inv_phi_l, sw, sr, sg, sb, sm1, sm2, row, dy * w + dx, x0, x1,
-                   inv_tap_distance(dx, dy, 1), power);
+      const auto tap = [&](int from, int to) {
+        if (from < to)
+          variance_tap(g.depth, g.normal.r, g.normal.g, g.normal.b, lum, c.r, c.g, c.b,
+                       k.moment1, k.moment2, inv_phi_z, inv_phi_l, sw, sr, sg, sb, sm1, sm2, row,
+                       dy * w + dx, from, to, inv_tap_distance(dx, dy, 1), power);
+      };
+      tap(x0, std::min(x1, inner0));  // left of the tap rows' pixels (all of them without)
+      tap(std::max(x0, inner1), x1);  // right of them
     }
   }
   const int at = row + lo;

@@ -50,18 +50,20 @@ void require_atrous_rows_match(const Frame& f, const Image& in, float phi, int s
 
 // The spatial variance estimate, likewise.
 void require_variance_rows_match(const Frame& f, const Image& acc, const Image& moments,
-                                 const Image& history, float phi) {
+                                 const Image& history, float phi, int radius = 3) {
   const int w = acc.width(), h = acc.height();
   Image a(w, h, 4), b(w, h, 4);
   SvgfParams p;
   p.phi_normal = phi;
+  p.spatial_variance_radius = radius;
   const VarianceKernel k{f.guides(), {acc.rgb(), acc.plane(3)}, moments.plane(0),
                          moments.plane(1), history.plane(0), {a.rgb(), a.plane(3)}, p};
   VarianceKernel k2 = k;
   k2.out = {b.rgb(), b.plane(3)};
   cpu::for_each_pixel(w, h, k);
   cpu::run_variance_rows(k2, w, h);
-  test::require_identical(b, a, "variance " + std::to_string(w) + "x" + std::to_string(h));
+  test::require_identical(b, a, "variance " + std::to_string(w) + "x" + std::to_string(h) +
+                                   ", radius " + std::to_string(radius));
 }
 
 }  // namespace
@@ -181,5 +183,8 @@ TEST_CASE("cpu rows: spatial variance rows equal the per-pixel kernel bitwise", 
     test::fill_uniform(history, 1.f, 6.f, ++seed);
     for (float& v : history.data()) v = std::floor(v);  // a mix of young (<4) and old history
     for (float phi : {128.f, 3.f}) require_variance_rows_match(f, acc, moments, history, phi);
+    // Radius 3 (the default) takes the tap rows where all seven taps lie inside; the others
+    // one tap at a time.
+    for (int radius : {1, 2}) require_variance_rows_match(f, acc, moments, history, 128.f, radius);
   }
 }
