@@ -10,8 +10,6 @@
 // stratum's own lambda (a division) once, not once for every neighbour that reads it, then the
 // neighbourhood's maximum in the kernel's order, a tap at a time along a row. Same bits as the
 // kernels (tests/svgf_cpu_gradient_rows_test.cpp).
-#include <vector>
-
 #include "kernels_cpu/row_tools.h"
 #include "kernels_cpu/svgf_rows.h"
 
@@ -20,8 +18,8 @@ namespace {
 
 // The guides the taps read, per stratum (at its sample's pixel, StratumGuides::pixel).
 struct StrataGuides {
-  std::vector<float> depth, nx, ny, nz;
-  std::vector<uint32_t> mesh;
+  UninitializedPlane<float> depth, nx, ny, nz;
+  UninitializedPlane<uint32_t> mesh;
   explicit StrataGuides(size_t n) : depth(n), nx(n), ny(n), nz(n), mesh(n) {}
 };
 
@@ -137,7 +135,7 @@ void run_gradient_lambda_rows(const GradientLambdaKernel& kernel, int strata_wid
   (void)strata_width;  // the kernel's own (strata_width, strata_height) are the image
   (void)strata_height;
   const int sw = kernel.strata_width, sh = kernel.strata_height;
-  std::vector<float> own(static_cast<size_t>(sw) * static_cast<size_t>(sh));
+  UninitializedPlane<float> own(static_cast<size_t>(sw) * static_cast<size_t>(sh));
   parallel_rows(sh, [&](int y0, int y1) {
     for (int sy = y0; sy < y1; ++sy) {
       const int s = sy * sw;

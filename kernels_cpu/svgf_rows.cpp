@@ -419,8 +419,8 @@ SVGF_TAP_LOOP void luminance_span(const float* __restrict r, const float* __rest
 }
 
 // Luminance of every pixel of `color`, once per stage instead of once per tap.
-std::vector<float> luminance_plane(ConstRgbView color, int w, int h) {
-  std::vector<float> lum(static_cast<size_t>(w) * h);
+UninitializedPlane<float> luminance_plane(ConstRgbView color, int w, int h) {
+  UninitializedPlane<float> lum(static_cast<size_t>(w) * h);
   parallel_rows(h, [&](int y0, int y1) {
     const int i = y0 * w;
     luminance_span(color.r + i, color.g + i, color.b + i, lum.data() + i, (y1 - y0) * w);
@@ -431,7 +431,7 @@ std::vector<float> luminance_plane(ConstRgbView color, int w, int h) {
 }  // namespace
 
 void run_atrous_rows(const AtrousKernel& kernel, int width, int height) {
-  const std::vector<float> lum = luminance_plane(kernel.in.color, width, height);
+  const UninitializedPlane<float> lum = luminance_plane(kernel.in.color, width, height);
   with_normal_power(kernel.params.phi_normal, [&](const auto& power) {
     parallel_rows(height, [&](int y0, int y1) {
       RowScratch s(7, width);
@@ -441,7 +441,7 @@ void run_atrous_rows(const AtrousKernel& kernel, int width, int height) {
 }
 
 void run_variance_rows(const VarianceKernel& kernel, int width, int height) {
-  const std::vector<float> lum = luminance_plane(kernel.accumulated.color, width, height);
+  const UninitializedPlane<float> lum = luminance_plane(kernel.accumulated.color, width, height);
   with_normal_power(kernel.params.phi_normal, [&](const auto& power) {
     parallel_rows(height, [&](int y0, int y1) {
       RowScratch s(7, width);

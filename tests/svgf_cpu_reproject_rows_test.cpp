@@ -161,8 +161,10 @@ std::array<double, 7> chunk_kinds(const ReprojectKernel& k) {
       bool gather = false;
       for (int x = x0; x < x0 + 16; ++x) {
         float px = 0.f, py = 0.f;
-        gather |= !k.previous_position(x, y, k.guides.index(x, y), px, py);
-        const BilinearTaps taps = BilinearTaps::at(px, py);
+        const bool moved = k.previous_position(x, y, k.guides.index(x, y), px, py);
+        gather |= !moved;
+        // Not moved: px, py may be NaN or far out, which no float-to-int conversion may see.
+        const BilinearTaps taps = BilinearTaps::at(moved ? px : 0.f, moved ? py : 0.f);
         gather |= !k.prev_guides.inside(taps.x0, taps.y0) ||
                   !k.prev_guides.inside(taps.x0 + 1, taps.y0 + 1);
         dx_min = std::min(dx_min, taps.x0 - x);
