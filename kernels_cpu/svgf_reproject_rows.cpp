@@ -5,9 +5,9 @@
 // little through the 3x3 fallback. A camera's motion field is smooth, so the taps of 16
 // neighbouring pixels mostly lie at one of a few shifts from them (up to 3 columns and 2 rows
 // apart): such a chunk reads its taps by contiguous loads and selects (same values), the
-// others through gathers. The
-// per-pixel kernel runs the stage under the statistics anti-lag and without history. Same bits
-// as the per-pixel kernel (tests/svgf_cpu_reproject_rows_test.cpp).
+// others through gathers. The per-pixel kernel runs the stage under the statistics anti-lag
+// and without history. Same bits as the per-pixel kernel
+// (tests/svgf_cpu_reproject_rows_test.cpp).
 #include <vector>
 
 #include "kernels_cpu/row_tools.h"
@@ -188,11 +188,11 @@ SVGF_TAP_LOOP void reproject_bilinear_windows(const ReprojectKernel& kernel, int
         const int j = corner + l + (t & 1) + (t >> 1) * pw;
         History with = h;
         float with_sum = weight_sum;
-        ReprojectKernel::add_tap(with, with_sum, read_shifted<kSpreadX, kShiftY>(history_at, j, sx, sy, pw),
-                                 taps.weight(t));
-        take_if(k.tap_matches(test, read_shifted<kSpreadX, kShiftY>(guides_at, j, sx, sy,
-                                                                     pw)), with, with_sum, h,
-                weight_sum);
+        const History tap = read_shifted<kSpreadX, kShiftY>(history_at, j, sx, sy, pw);
+        ReprojectKernel::add_tap(with, with_sum, tap, taps.weight(t));
+        const ReprojectKernel::TapGuides guides =
+            read_shifted<kSpreadX, kShiftY>(guides_at, j, sx, sy, pw);
+        take_if(k.tap_matches(test, guides), with, with_sum, h, weight_sum);
       }
       const bool bilinear = weight_sum >= min_weight;
       blend_read<kLambda>(k, x, y, i, i, bilinear, ReprojectKernel::normalized(h, weight_sum));
