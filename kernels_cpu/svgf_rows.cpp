@@ -76,50 +76,25 @@ SVGF_TAP_LOOP void atrous_tap_row(const float* __restrict depth, const float* __
   }
 }
 
-// One tap of the 7x7 spatial variance estimate, likewise.
-template <class Power>
-SVGF_TAP_LOOP void variance_tap(const float* __restrict depth, const float* __restrict nx,
-                  const float* __restrict ny, const float* __restrict nz,
-                  const float* __restrict lum, const float* __restrict cr,
-                  const float* __restrict cg, const float* __restrict cb,
-                  const float* __restrict m1_in, const float* __restrict m2_in,
-                  const float* __restrict inv_phi_z, float inv_phi_l, float* __restrict sw,
-                  float* __restrict sr, float* __restrict sg, float* __restrict sb,
-                  float* __restrict sm1, float* __restrict sm2, int row, int offset, int x0,
-                  int x1, float inv_dist, const Power& power) {
-  for (int x = x0; x < x1; ++x) {
-    const int i = row + x, j = row + offset + x;
-    const EdgeSample c{depth[i], make_vec3(nx[i], ny[i], nz[i]), lum[i]};
-    const EdgeSample q{depth[j], make_vec3(nx[j], ny[j], nz[j]), lum[j]};
-    const float wt =
-        edge_stopping_weight<RowExactArith>(c, q, inv_phi_z[x] * inv_dist, power, inv_phi_l);
-    sw[x] = sw[x] + wt;
-    sr[x] = sr[x] + cr[j] * wt;
-    sg[x] = sg[x] + cg[j] * wt;
-    sb[x] = sb[x] + cb[j] * wt;
-    sm1[x] = sm1[x] + m1_in[j] * wt;
-    sm2[x] = sm2[x] + m2_in[j] * wt;
-  }
-}
-
-// The seven taps dx = -3..3 of one tap row of the 7x7 estimate (its default radius), for pixels
-// x0..x1 whose seven taps all lie inside the image: the same terms in the same order as seven
-// variance_tap calls, with the centre and the running sums held in registers across the seven
-// (as atrous_tap_row).
-template <class Power>
-SVGF_TAP_LOOP void variance_tap_row(const float* __restrict depth, const float* __restrict nx,
-                                    const float* __restrict ny, const float* __restrict nz,
-                                    const float* __restrict lum, const float* __restrict cr,
-                                    const float* __restrict cg, const float* __restrict cb,
-                                    const float* __restrict m1_in, const float* __restrict m2_in,
-                                    const float* __restrict inv_phi_z, float inv_phi_l,
-                                    float* __restrict sw, float* __restrict sr,
-                                    float* __restrict sg, float* __restrict sb,
-                                    float* __restrict sm1, float* __restrict sm2, int row,
-                                    int row_offset, int x0, int x1, const float* inv_dist,
-                                    const Power& power) {
-  float d[7];
-  for (int t = 0; t < 7; ++t) d[t] = inv_dist[t];
+// N neighbouring taps of one tap row of the 7x7 spatial variance estimate, dx = first_dx ..
+// first_dx + N - 1 (inv_dist[t] each), for pixels x0..x1 whose N taps all lie inside the image;
+// the body is the per-pixel kernel's. The centre and the sums stay in registers across the N
+// taps (as jbf_tap_group): N = 7 is a whole tap row at the default radius, N = 1 one tap (the
+// border pixels, other radii).
+template <int N, class Power>
+SVGF_TAP_LOOP void variance_taps(const float* __restrict depth, const float* __restrict nx,
+                                 const float* __restrict ny, const float* __restrict nz,
+                                 const float* __restrict lum, const float* __restrict cr,
+                                 const float* __restrict cg, const float* __restrict cb,
+                                 const float* __restrict m1_in, const float* __restrict m2_in,
+                                 const float* __restrict inv_phi_z, float inv_phi_l,
+                                 float* __restrict sw, float* __restrict sr,
+                                 float* __restrict sg, float* __restrict sb,
+                                 float* __restrict sm1, float* __restrict sm2, int row,
+                                 int row_offset, int first_dx, int x0, int x1,
+                                 const float* inv_dist, const Power& power) {
+  float d[N];
+  for (int t = 0; t < N; ++t) d[t] = inv_dist[t];
   for (int x = x0; x < x1; ++x) {
     const int i = row + x;
     const EdgeSample c{depth[i], make_vec3(nx[i], ny[i], nz[i]), lum[i]};
@@ -127,8 +102,8 @@ SVGF_TAP_LOOP void variance_tap_row(const float* __restrict depth, const float* 
     float w_sum = sw[x], r_sum = sr[x], g_sum = sg[x], b_sum = sb[x], m1_sum = sm1[x],
           m2_sum = sm2[x];
 #pragma GCC unroll 7
-    for (int t = 0; t < 7; ++t) {
-      const int j = i + row_offset + t - 3;
+    for (int t = 0; t < N; ++t) {
+      const int j = i + row_offset + first_dx + t;
       const EdgeSample q{depth[j], make_vec3(nx[j], ny[j], nz[j]), lum[j]};
       const float wt = edge_stopping_weight<RowExactArith>(c, q, ipz * d[t], power, inv_phi_l);
       w_sum = w_sum + wt;
@@ -361,17 +336,19 @@ void variance_span(const VarianceKernel& k, const float* __restrict lum, int y, 
     float inv_dist[2 * kRowRadius + 1];
     if (rows) {
       for (int dx = -r; dx <= r; ++dx) inv_dist[dx + r] = inv_tap_distance(dx, dy, 1);
-      variance_tap_row(g.depth, g.normal.r, g.normal.g, g.normal.b, lum, c.r, c.g, c.b,
-                       k.moment1, k.moment2, inv_phi_z, inv_phi_l, sw, sr, sg, sb, sm1, sm2, row,
-                       dy * w, inner0, inner1, inv_dist, power);
+      variance_taps<2 * kRowRadius + 1>(g.depth, g.normal.r, g.normal.g, g.normal.b, lum, c.r,
+                                        c.g, c.b, k.moment1, k.moment2, inv_phi_z, inv_phi_l,
+                                        sw, sr, sg, sb, sm1, sm2, row, dy * w, -kRowRadius,
+                                        inner0, inner1, inv_dist, power);
     }
     for (int dx = -r; dx <= r; ++dx) {
       const int x0 = std::max(lo, -dx), x1 = std::min(hi, w - dx);
+      const float dist = inv_tap_distance(dx, dy, 1);
       const auto tap = [&](int from, int to) {
         if (from < to)
-          variance_tap(g.depth, g.normal.r, g.normal.g, g.normal.b, lum, c.r, c.g, c.b,
-                       k.moment1, k.moment2, inv_phi_z, inv_phi_l, sw, sr, sg, sb, sm1, sm2, row,
-                       dy * w + dx, from, to, inv_tap_distance(dx, dy, 1), power);
+          variance_taps<1>(g.depth, g.normal.r, g.normal.g, g.normal.b, lum, c.r, c.g, c.b,
+                           k.moment1, k.moment2, inv_phi_z, inv_phi_l, sw, sr, sg, sb, sm1, sm2,
+                           row, dy * w, dx, from, to, &dist, power);
       };
       tap(x0, std::min(x1, inner0));  // left of the tap rows' pixels (all of them without)
       tap(std::max(x0, inner1), x1);  // right of them
