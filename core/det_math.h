@@ -34,16 +34,29 @@ SVGF_HD float det_scale_pow2(float y, int k) {
   return (y * s1) * s2;  // y*s1 is exact; the only rounding is the last product
 }
 
-// exp(x) in float for x already clamped to [-104, 89]. Cody-Waite reduction x = k ln2 + r with
-// |r| <= ln2/2 (ln2 split so k*ln2_hi is exact for |k| <= 255), the Cephes expf minimax
-// polynomial for e^r, then 2^k applied as two exact power-of-two factors so that a subnormal
-// result is rounded only once. Straight-line code, so the CPU loops vectorize it.
-SVGF_HD float det_exp_clamped(float xc) {
-  // k = floor(x log2e + 1/2), |k| <= 150: floorf is one rounding instruction (roundps,
-  // vrndscaleps: the CPU kernels are built with -fno-trapping-math; FRND on the GPU) and k
-  // converts to the integer exactly, two instructions where floor through truncation took six.
+// y 2^k for y in [0.7, 1.42] and an integral k in [-150, 0] (det_exp_nonpositive's range), with
+// the same one rounding as det_scale_pow2 in fewer instructions and no float-to-int conversion:
+// y 2^(k+64) is exact and normal (k + 64 in [-86, 64]), and the product by 2^-64 rounds it once.
+// 2^(k+64)'s bits come from k's float: k + (1.5 2^23 + 191) is exact and holds the integer
+// k + 191 in [41, 191] in its low mantissa bits (its bits are 0x4B400000 + k + 191); shifted
+// left by 23, everything above those bits falls out and k + 191 becomes the exponent field.
+// tests/det_math_test.cpp checks it against det_scale_pow2 for every k and many y.
+SVGF_HD float det_scale_pow2_nonpositive(float y, float k) {
+  const uint32_t field = float_bits(k + 12583103.f) << 23;  // 12583103 = 1.5 2^23 + 191
+  return (y * bits_float(field)) * 5.42101086242752217e-20f;  // 2^-64
+}
+
+// e^x = y 2^k for x clamped to [-104, 89]: Cody-Waite reduction x = k ln2 + r with |r| <= ln2/2
+// (ln2 split so k*ln2_hi is exact for |k| <= 255) and the Cephes expf minimax polynomial for
+// y = e^r. Straight-line code, so the CPU loops vectorize it.
+struct ExpReduced {
+  float y;  // e^r, in [0.7, 1.42]
+  float k;  // integral, |k| <= 150
+};
+SVGF_HD ExpReduced det_exp_reduce(float xc) {
+  // k = floor(x log2e + 1/2): floorf is one rounding instruction (roundps, vrndscaleps: the CPU
+  // kernels are built with -fno-trapping-math; FRND on the GPU).
   const float k = floorf(xc * 1.44269504088896341f + 0.5f);
-  const int ki = static_cast<int>(k);
   const float r = (xc - k * 0.693145751953125f) - k * 1.428606765330187e-06f;
   const float r2 = r * r;
   float p = 1.9875691500e-4f;
@@ -52,7 +65,15 @@ SVGF_HD float det_exp_clamped(float xc) {
   p = p * r + 4.1665795894e-2f;
   p = p * r + 1.6666665459e-1f;
   p = p * r + 5.0000001201e-1f;
-  return det_scale_pow2((p * r2 + r) + 1.f, ki);
+  return ExpReduced{(p * r2 + r) + 1.f, k};
+}
+
+// exp(x) in float for x already clamped to [-104, 89]: 2^k applied as two exact power-of-two
+// factors so that a subnormal result is rounded only once. k converts to the integer exactly
+// (|k| <= 150).
+SVGF_HD float det_exp_clamped(float xc) {
+  const ExpReduced e = det_exp_reduce(xc);
+  return det_scale_pow2(e.y, static_cast<int>(e.k));
 }
 
 // exp(x) in float, any x: below -104 the result is 0, above 89 +Inf, NaN stays NaN.
@@ -62,10 +83,15 @@ SVGF_HD float det_exp(float x) {
 }
 
 // exp(x) for x <= 0 or NaN (NaN gives 0): the edge-stopping weights' case. The same bits as
-// det_exp for every x <= 0; with one clamp instead of two, GCC 12 if-converts (vectorizes) it.
+// det_exp for every x <= 0 (and for 0 < x < 43, which no caller passes; beyond, k + 191 leaves
+// the exponent field); with one clamp instead of two, GCC 12 if-converts (vectorizes) it.
 // K: how the clamp sees its constant (core/vec.h, LiteralConstant).
+// x clamped to [-104, 0] makes k <= 0, so 2^k goes through det_scale_pow2_nonpositive (same bits).
 template <class K = LiteralConstant>
-SVGF_HD float det_exp_nonpositive(float x) { return det_exp_clamped(max_f(x, K::of(-104.f))); }
+SVGF_HD float det_exp_nonpositive(float x) {
+  const ExpReduced e = det_exp_reduce(max_f(x, K::of(-104.f)));
+  return det_scale_pow2_nonpositive(e.y, e.k);
+}
 
 // exp(x) in double, same scheme with a degree-13 Taylor polynomial (error < 1e-16 on |r|<=ln2/2).
 // Used only inside det_pow, where a float result needs a few more bits than float carries.

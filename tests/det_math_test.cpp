@@ -178,6 +178,30 @@ TEST_CASE("det_scale_pow2 gives the bits of the split at k/2 for every k of det_
   REQUIRE(det_scale_pow2(1.f, 127) == std::ldexp(1.f, 127));
 }
 
+TEST_CASE("det_scale_pow2_nonpositive gives det_scale_pow2's bits for every k <= 0 of det_exp",
+          "[det_math]") {
+  // Every k det_exp_nonpositive makes (x in [-104, 0]), y over e^r's range and a little beyond:
+  // every 13th float of it and its last, subnormal results (k below -126) included.
+  const uint32_t first = float_bits(0.69f), last = float_bits(1.43f);
+  uint64_t differing = 0, n = 0, subnormal = 0;
+  for (int k = -150; k <= 0; ++k) {
+    const auto check = [&](uint32_t b) {
+      const float y = bits_float(b), got = det_scale_pow2_nonpositive(y, static_cast<float>(k));
+      differing += float_bits(got) != float_bits(det_scale_pow2(y, k));
+      subnormal += std::fpclassify(got) == FP_SUBNORMAL;
+      ++n;
+    };
+    for (uint32_t b = first; b < last; b += 13) check(b);
+    check(last);
+  }
+  CHECK(n > 50000000u);
+  CHECK(subnormal > 10000000u);
+  REQUIRE(differing == 0);
+  REQUIRE(det_scale_pow2_nonpositive(1.f, -149.f) == std::ldexp(1.f, -149));
+  REQUIRE(det_scale_pow2_nonpositive(1.f, -150.f) == 0.f);  // 2^-150 rounds to even: 0
+  REQUIRE(det_scale_pow2_nonpositive(1.4f, 0.f) == 1.4f);
+}
+
 TEST_CASE("det_exp_nonpositive gives det_exp's bits for every x <= 0", "[det_math]") {
   const uint32_t end = float_bits(110.f);
   uint64_t differing = 0, n = 0;
