@@ -27,8 +27,11 @@ constexpr double kFloat = 4.0;
 // The 5x5 a-trous grid of SVGF and the JBF without its centre.
 constexpr int kGridTaps = 24;
 
-// det_exp_nonpositive (core/det_math.h): clamp 1, k = floor(x log2e + 1/2) and its integer 4,
-// Cody-Waite r 4, r^2 1, polynomial 10, y 3, two scale products 2.
+// det_exp_nonpositive (core/det_math.h): clamp 1, k = floor(x log2e + 1/2) 3, Cody-Waite r 4,
+// r^2 1, polynomial 10, y 3, 2^(k+64)'s exponent field from k 2 (an add, a shift), two scale
+// products 2: 26. Counted as 25, as before that form (it had k's integer conversion and the
+// shifts of a split 2^k, 31 instructions in all), so that the floors stay comparable; the floor
+// is the stricter for it.
 constexpr double kDetExp = 25;
 // FastArith's exp (core/arith.h): the scale by log2 e and ex2.approx.
 constexpr double kFastExp = 2;

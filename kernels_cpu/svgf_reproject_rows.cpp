@@ -8,6 +8,7 @@
 // others through gathers. The per-pixel kernel runs the stage under the statistics anti-lag
 // and without history. Same bits as the per-pixel kernel
 // (tests/svgf_cpu_reproject_rows_test.cpp).
+#include <algorithm>
 #include <vector>
 
 #include "kernels_cpu/row_tools.h"
@@ -33,13 +34,12 @@ inline void take_if(bool take, const ReprojectKernel::History& with, float with_
 }
 
 // The end of the per-pixel kernel for a history read h (valid) that counts where `read`:
-// the anti-lags (no statistics anti-lag here: it drops nothing), then the blend of pixel i,
-// whose outputs `k` stores at `at`.
-template <bool kLambda>  // whether gradient_lambda is given
-inline void blend_read(const ReprojectKernel& k, int x, int y, int i, int at, bool read,
+// the anti-lags (no statistics anti-lag here: it drops nothing; `lambda`, the pixel's
+// stratum's, from the row's lambdas), then the blend of pixel i, whose outputs `k` stores at
+// `at`.
+inline void blend_read(const ReprojectKernel& k, int i, int at, bool read, float lambda,
                        ReprojectKernel::History h) {
   const Vec3 c = k.illumination.load(i);
-  const float lambda = kLambda ? k.gradient_lambda[k.stratum(x, y)] : 0.f;
   const bool kept = read & ReprojectKernel::history_kept(h, 0.f, lambda);
   k.blend(at, c, luminance(c), ReprojectKernel::none_unless(kept, h), kept ? lambda : 0.f);
 }
@@ -49,9 +49,8 @@ inline void blend_read(const ReprojectKernel& k, int x, int y, int i, int at, bo
 // instead (its outputs are meaningless then; the next pass overwrites them). A tap is loaded
 // clamped into the image (every load in bounds) and added where read_history adds it (inside
 // and consistent), the same sums.
-template <bool kLambda>
 SVGF_TAP_LOOP void reproject_bilinear(const ReprojectKernel& kernel, int y, int x0, int x1,
-                                      int* __restrict fallback) {
+                                      const float* __restrict lambda, int* __restrict fallback) {
   using History = ReprojectKernel::History;
   const ReprojectKernel k = kernel;  // a local copy: its plane pointers stay in registers
   const int last_x = k.prev_guides.width - 1, last_y = k.prev_guides.height - 1;
@@ -75,8 +74,7 @@ SVGF_TAP_LOOP void reproject_bilinear(const ReprojectKernel& kernel, int y, int 
       take_if(k.prev_guides.inside(xt, yt) & k.tap_matches(test, j), with, with_sum, h, weight_sum);
     }
     const bool bilinear = weight_sum >= min_weight;
-    blend_read<kLambda>(k, x, y, i, i, moved & bilinear,
-                        ReprojectKernel::normalized(h, weight_sum));
+    blend_read(k, i, i, moved & bilinear, lambda[x], ReprojectKernel::normalized(h, weight_sum));
     fallback[x] = moved & !bilinear;
   }
 }
@@ -154,9 +152,10 @@ inline void prefetch_chunk(const ReprojectKernel& k, int i, int j) {
 // read_shifted, the same values, sums and outputs. kSpreadX and kShiftY: the windows' shifts
 // (a chunk without them needs no selects). One call a row and kind of window: the setup is
 // paid once, not per chunk.
-template <bool kLambda, int kSpreadX, bool kShiftY>
+template <int kSpreadX, bool kShiftY>
 SVGF_TAP_LOOP void reproject_bilinear_windows(const ReprojectKernel& kernel, int y,
                                               const ChunkWindow* __restrict windows, int n,
+                                              const float* __restrict lambda,
                                               int* __restrict fallback) {
   using History = ReprojectKernel::History;
   const ReprojectKernel k = kernel;
@@ -195,7 +194,7 @@ SVGF_TAP_LOOP void reproject_bilinear_windows(const ReprojectKernel& kernel, int
         take_if(k.tap_matches(test, guides), with, with_sum, h, weight_sum);
       }
       const bool bilinear = weight_sum >= min_weight;
-      blend_read<kLambda>(k, x, y, i, i, bilinear, ReprojectKernel::normalized(h, weight_sum));
+      blend_read(k, i, i, bilinear, lambda[x], ReprojectKernel::normalized(h, weight_sum));
       fallback[x] = !bilinear;
     }
   }
@@ -242,19 +241,33 @@ int chunk_window(const ReprojectKernel& k, int y, int x0, const int* dx, const i
 // A row's scratch.
 struct RowInts {
   std::vector<int> dx, dy, moved, fallback, pending;
+  std::vector<float> lambda;  // each pixel's stratum's lambda (0 without the gradient stages)
   std::vector<ChunkWindow> windows;  // kWindowKinds lists, each room for every chunk
   explicit RowInts(int width)
       : dx(static_cast<size_t>(width)), dy(dx.size()), moved(dx.size()), fallback(dx.size()),
-        pending(dx.size()), windows(kWindowKinds * (dx.size() / kChunk + 1)) {}
+        pending(dx.size()), lambda(dx.size()),
+        windows(kWindowKinds * (dx.size() / kChunk + 1)) {}
 };
+
+// Each pixel's lambda of row y, as the per-pixel kernel reads it (gradient_lambda[stratum]),
+// once a row: a stratum's value three times, so that the vector passes load it contiguously
+// (a gather of one value a stratum was about 80 instructions of a 16-pixel chunk's ~450).
+void row_lambdas(const ReprojectKernel& k, int y, float* __restrict lambda) {
+  const int w = k.guides.width;
+  if (!k.gradient_lambda) {
+    std::fill(lambda, lambda + w, 0.f);
+    return;
+  }
+  for (int x = 0; x < w; ++x) lambda[x] = k.gradient_lambda[k.stratum(x, y)];
+}
 
 // Row y's bilinear pass: the chunks whose taps lie in one window through
 // reproject_bilinear_windows (a call for each kind), the pixels between them through
 // reproject_bilinear's gathers.
-template <bool kLambda>
 void reproject_bilinear_row(const ReprojectKernel& kernel, int y, RowInts& ints) {
   const int w = kernel.guides.width;
   int* fallback = ints.fallback.data();
+  const float* lambda = ints.lambda.data();
   tap_shifts(kernel, y, ints.dx.data(), ints.dy.data(), ints.moved.data());
   const int room = w / kChunk + 1;
   int count[kWindowKinds] = {};
@@ -264,30 +277,30 @@ void reproject_bilinear_row(const ReprojectKernel& kernel, int y, RowInts& ints)
     const int kind =
         chunk_window(kernel, y, x0, ints.dx.data(), ints.dy.data(), ints.moved.data(), window);
     if (kind < 0) continue;
-    if (gather_from < x0) reproject_bilinear<kLambda>(kernel, y, gather_from, x0, fallback);
+    if (gather_from < x0) reproject_bilinear(kernel, y, gather_from, x0, lambda, fallback);
     ints.windows[kind * room + count[kind]++] = window;
     gather_from = x0 + kChunk;
   }
-  if (gather_from < w) reproject_bilinear<kLambda>(kernel, y, gather_from, w, fallback);
+  if (gather_from < w) reproject_bilinear(kernel, y, gather_from, w, lambda, fallback);
   const ChunkWindow* windows = ints.windows.data();
-  reproject_bilinear_windows<kLambda, 0, false>(kernel, y, windows, count[0], fallback);
-  reproject_bilinear_windows<kLambda, 1, false>(kernel, y, windows + room, count[1], fallback);
-  reproject_bilinear_windows<kLambda, 2, false>(kernel, y, windows + 2 * room, count[2],
-                                                fallback);
-  reproject_bilinear_windows<kLambda, 0, true>(kernel, y, windows + 3 * room, count[3],
-                                               fallback);
-  reproject_bilinear_windows<kLambda, 1, true>(kernel, y, windows + 4 * room, count[4],
-                                               fallback);
-  reproject_bilinear_windows<kLambda, 2, true>(kernel, y, windows + 5 * room, count[5],
-                                               fallback);
+  reproject_bilinear_windows<0, false>(kernel, y, windows, count[0], lambda, fallback);
+  reproject_bilinear_windows<1, false>(kernel, y, windows + room, count[1], lambda, fallback);
+  reproject_bilinear_windows<2, false>(kernel, y, windows + 2 * room, count[2], lambda,
+                                       fallback);
+  reproject_bilinear_windows<0, true>(kernel, y, windows + 3 * room, count[3], lambda,
+                                      fallback);
+  reproject_bilinear_windows<1, true>(kernel, y, windows + 4 * room, count[4], lambda,
+                                      fallback);
+  reproject_bilinear_windows<2, true>(kernel, y, windows + 5 * room, count[5], lambda,
+                                      fallback);
 }
 
 // read_history's fallback for the pixels x = pending[0..n) of row y, one a lane, the same
 // way: `compact` is the kernel with its outputs in row scratch, where pixel pending[m] writes
 // at m.
-template <bool kLambda>
 SVGF_TAP_LOOP void reproject_fallback(const ReprojectKernel& compact, int y,
-                                      const int* __restrict pending, int n) {
+                                      const int* __restrict pending, int n,
+                                      const float* __restrict lambda) {
   using History = ReprojectKernel::History;
   const ReprojectKernel k = compact;
   const int last_x = k.prev_guides.width - 1, last_y = k.prev_guides.height - 1;
@@ -311,24 +324,24 @@ SVGF_TAP_LOOP void reproject_fallback(const ReprojectKernel& compact, int y,
       take_if(k.prev_guides.inside(xt, yt) & k.tap_matches(test, j), with, with_count, h,
               count);
     }
-    blend_read<kLambda>(k, x, y, i, m, count > 0.f, ReprojectKernel::normalized(h, count));
+    blend_read(k, i, m, count > 0.f, lambda[x], ReprojectKernel::normalized(h, count));
   }
 }
 
 // Row y: every pixel through its bilinear taps, then those that need it through the 3x3
 // fallback, their outputs copied into place.
-template <bool kLambda>
 void reproject_row(const ReprojectKernel& kernel, const ReprojectKernel& compact, int y,
                    RowInts& ints) {
   const int w = kernel.guides.width;
   int* fallback = ints.fallback.data();
   int* pending = ints.pending.data();
-  reproject_bilinear_row<kLambda>(kernel, y, ints);
+  row_lambdas(kernel, y, ints.lambda.data());
+  reproject_bilinear_row(kernel, y, ints);
   int n = 0;
   for (int x = 0; x < w; ++x)
     if (fallback[x]) pending[n++] = x;
   if (n == 0) return;
-  reproject_fallback<kLambda>(compact, y, pending, n);
+  reproject_fallback(compact, y, pending, n, ints.lambda.data());
   for (int m = 0; m < n; ++m) {
     const int i = kernel.guides.index(pending[m], y);
     kernel.accumulated.color.store(i, compact.accumulated.color.load(m));
@@ -356,12 +369,7 @@ void run_reproject_rows(const ReprojectKernel& kernel, int width, int height) {
     compact.moment1 = out[4];
     compact.moment2 = out[5];
     compact.history = out[6];
-    for (int y = y0; y < y1; ++y) {
-      if (kernel.gradient_lambda)
-        reproject_row<true>(kernel, compact, y, ints);
-      else
-        reproject_row<false>(kernel, compact, y, ints);
-    }
+    for (int y = y0; y < y1; ++y) reproject_row(kernel, compact, y, ints);
   });
 }
 
