@@ -155,48 +155,59 @@ TEST_CASE("det_exp_clamped gives the bits of its earlier form on [-104, 89]", "[
   REQUIRE(differing == 0);
 }
 
-TEST_CASE("det_scale_pow2 gives the bits of the split at k/2 for every k of det_exp",
-          "[det_math]") {
-  // Every k det_exp_clamped makes (x in [-104, 89]), y over e^r's range and a little beyond:
-  // every 61st float of it and its last, subnormal results (k below -126) included.
+namespace {
+
+// Two ways of y 2^k over k = k_first..k_last and y over e^r's range and a little beyond (every
+// stride-th float of it and its last): how many values were compared, how many differ and how
+// many of `got`'s are subnormal.
+struct ScaleComparison {
+  uint64_t n = 0, differing = 0, subnormal = 0;
+};
+template <class Got, class Want>
+ScaleComparison compare_scales(int k_first, int k_last, uint32_t stride, const Got& got,
+                               const Want& want) {
   const uint32_t first = float_bits(0.69f), last = float_bits(1.43f);
-  uint64_t differing = 0, n = 0, subnormal = 0;
-  for (int k = -150; k <= 128; ++k) {
+  ScaleComparison c;
+  for (int k = k_first; k <= k_last; ++k) {
     const auto check = [&](uint32_t b) {
-      const float y = bits_float(b), got = det_scale_pow2(y, k);
-      differing += float_bits(got) != float_bits(scale_pow2_split_at_half(y, k));
-      subnormal += std::fpclassify(got) == FP_SUBNORMAL;
-      ++n;
+      const float y = bits_float(b), g = got(y, k);
+      c.differing += float_bits(g) != float_bits(want(y, k));
+      c.subnormal += std::fpclassify(g) == FP_SUBNORMAL;
+      ++c.n;
     };
-    for (uint32_t b = first; b < last; b += 61) check(b);
+    for (uint32_t b = first; b < last; b += stride) check(b);
     check(last);
   }
-  CHECK(n > 20000000u);
-  CHECK(subnormal > 1000000u);
-  REQUIRE(differing == 0);
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("det_scale_pow2 gives the bits of the split at k/2 for every k of det_exp",
+          "[det_math]") {
+  // Every k det_exp_clamped makes (x in [-104, 89]), every 61st y, subnormal results (k below
+  // -126) included.
+  const ScaleComparison c = compare_scales(
+      -150, 128, 61, [](float y, int k) { return det_scale_pow2(y, k); },
+      [](float y, int k) { return scale_pow2_split_at_half(y, k); });
+  CHECK(c.n > 20000000u);
+  CHECK(c.subnormal > 1000000u);
+  REQUIRE(c.differing == 0);
   REQUIRE(det_scale_pow2(1.f, -149) == std::ldexp(1.f, -149));  // the smallest subnormal
   REQUIRE(det_scale_pow2(1.f, 127) == std::ldexp(1.f, 127));
 }
 
 TEST_CASE("det_scale_pow2_nonpositive gives det_scale_pow2's bits for every k <= 0 of det_exp",
           "[det_math]") {
-  // Every k det_exp_nonpositive makes (x in [-104, 0]), y over e^r's range and a little beyond:
-  // every 13th float of it and its last, subnormal results (k below -126) included.
-  const uint32_t first = float_bits(0.69f), last = float_bits(1.43f);
-  uint64_t differing = 0, n = 0, subnormal = 0;
-  for (int k = -150; k <= 0; ++k) {
-    const auto check = [&](uint32_t b) {
-      const float y = bits_float(b), got = det_scale_pow2_nonpositive(y, static_cast<float>(k));
-      differing += float_bits(got) != float_bits(det_scale_pow2(y, k));
-      subnormal += std::fpclassify(got) == FP_SUBNORMAL;
-      ++n;
-    };
-    for (uint32_t b = first; b < last; b += 13) check(b);
-    check(last);
-  }
-  CHECK(n > 50000000u);
-  CHECK(subnormal > 10000000u);
-  REQUIRE(differing == 0);
+  // Every k det_exp_nonpositive makes (x in [-104, 0]), every 13th y, subnormal results
+  // included.
+  const ScaleComparison c = compare_scales(
+      -150, 0, 13,
+      [](float y, int k) { return det_scale_pow2_nonpositive(y, static_cast<float>(k)); },
+      [](float y, int k) { return det_scale_pow2(y, k); });
+  CHECK(c.n > 50000000u);
+  CHECK(c.subnormal > 10000000u);
+  REQUIRE(c.differing == 0);
   REQUIRE(det_scale_pow2_nonpositive(1.f, -149.f) == std::ldexp(1.f, -149));
   REQUIRE(det_scale_pow2_nonpositive(1.f, -150.f) == 0.f);  // 2^-150 rounds to even: 0
   REQUIRE(det_scale_pow2_nonpositive(1.4f, 0.f) == 1.4f);
