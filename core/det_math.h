@@ -85,8 +85,8 @@ SVGF_HD float det_exp(float x) {
 // exp(x) for x <= 0 or NaN (NaN gives 0): the edge-stopping weights' case. The same bits as
 // det_exp for every x <= 0 (and for 0 < x < 43, which no caller passes; beyond, k + 191 leaves
 // the exponent field); with one clamp instead of two, GCC 12 if-converts (vectorizes) it.
-// K: how the clamp sees its constant (core/vec.h, LiteralConstant).
-// x clamped to [-104, 0] makes k <= 0, so 2^k goes through det_scale_pow2_nonpositive (same bits).
+// x clamped to [-104, 0] makes k <= 0, so 2^k goes through det_scale_pow2_nonpositive (same
+// bits). K: how the clamp sees its constant (core/vec.h, LiteralConstant).
 template <class K = LiteralConstant>
 SVGF_HD float det_exp_nonpositive(float x) {
   const ExpReduced e = det_exp_reduce(max_f(x, K::of(-104.f)));
