@@ -28,11 +28,12 @@ CpuUsage cpu_usage();
 // Share of the machine's CPUs that other processes used between a and b (0: quiet, 1: all).
 double others_share(const CpuUsage& a, const CpuUsage& b);
 
-// memcpy of 256 MiB split over `threads` workers; bytes read + written per second.
+// memcpy of 256 MiB split over `threads` workers; bytes read + written per second, the fastest
+// of 12 copies.
 double host_copy_gbs(int threads);
 // Float operations per second of independent vectorized multiply-then-add chains on `threads`
 // workers, compiled like the CPU kernel variant that runs (kernels_cpu/cpu_variant.h), no FMA:
-// the rate the a-trous loops could reach if nothing else limited them.
+// the rate the a-trous loops could reach if nothing else limited them. The fastest of 7 runs.
 double host_float_ops_per_s(int threads);
 
 }  // namespace svgf::bench

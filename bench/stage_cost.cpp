@@ -266,16 +266,19 @@ StageCost shared_cost(Stage stage, const SvgfParams& p, const FrameTraits& f, bo
 
 StageCost exact_cost(Stage stage, const SvgfParams& p, const FrameTraits& f, bool surface) {
   const bool emission = f.emission;
+  const bool packed = f.packed_exact;
   const double e = emission ? 3 : 0;  // emission planes, when the frames have them
   StageCost c;
   switch (stage) {
     case Stage::Sanitize:
       return sanitize_cost(emission);
     case Stage::Demodulate:
-      c.read = (3 + 3 + e) * kFloat;  // color, albedo, emission
-      c.written = 3 * kFloat;         // illumination
+      c.read = (3 + 3 + e + (packed ? 4 : 0)) * kFloat;  // color, albedo, emission, (guides)
+      c.written = (3 + (packed ? 4 : 0)) * kFloat;       // illumination, (packed guides)
       c.ops = kDemodulate + (emission ? kEmission : 0);
-      c.planes = "R color 3, albedo 3, emission 3 (if any); W illumination 3";
+      c.planes = packed ? "R color 3, albedo 3, emission 3 (if any), depth, normal 3; W "
+                          "illumination 3, packed guides 4"
+                        : "R color 3, albedo 3, emission 3 (if any); W illumination 3";
       break;
     case Stage::Reproject:
       // Surface: this frame's guides: mesh id, depth, depth dx/dy, normal 3, motion 2 (9); the
@@ -293,32 +296,39 @@ StageCost exact_cost(Stage stage, const SvgfParams& p, const FrameTraits& f, boo
       // The history length alone sends an old surface pixel down the pass-through (the guides
       // are read on the young-history path only); a background pixel's length is 1, so it
       // reads its depth too.
-      c.read = (1 + 4 + (surface ? 0 : 1)) * kFloat;  // length, accumulated, (depth)
-      c.written = 4 * kFloat;                         // filtered[0] color + variance
+      // Packed: the background's depth comes with its normal.
+      c.read = (1 + 4 + (surface ? 0 : packed ? 4 : 1)) * kFloat;  // length, accumulated, (depth)
+      c.written = 4 * kFloat;  // filtered[0] color + variance
       c.ops = kVarianceSteady;
-      c.planes = "R length 1, accumulated 4 (background: + depth 1); W color + variance 4";
+      c.planes = packed ? "R length 1, accumulated 4 (background: + packed guides 4); W packed 4"
+                        : "R length 1, accumulated 4 (background: + depth 1); W color + variance 4";
       break;
     case Stage::Atrous:
       // Per iteration: color + variance 4, depth, depth dx/dy, normal 3 (10 read; background
       // pixels pass through: color + variance and depth, 5); 4 written.
-      c.read = p.iterations * (surface ? 10 : 5) * kFloat;
+      // Packed: the same 10 on a surface; a background pixel reads its packed pixel and guides.
+      c.read = p.iterations * (surface ? 10 : packed ? 8 : 5) * kFloat;
       c.written = p.iterations * 4 * kFloat;
       c.ops = surface ? p.iterations * kExactAtrousIteration : 0;
       c.taps = surface ? p.iterations * kGridTaps : 0;
-      c.planes =
-          "per iteration R color + variance 4, depth 1, depth dx/dy 2, normal 3 (background: "
-          "color + variance, depth); W color + variance 4";
+      c.planes = packed ? "per iteration R packed 4, packed guides 4, depth dx/dy 2 (background: "
+                          "packed, packed guides); W packed 4"
+                        : "per iteration R color + variance 4, depth 1, depth dx/dy 2, normal 3 "
+                          "(background: color + variance, depth); W color + variance 4";
       break;
-    case Stage::Feedback:  // a plane copy: the tap's output, or the accumulation when none
-      c.read = 3 * kFloat;
+    case Stage::Feedback:  // a copy: the tap's output, or the accumulation when none
+      // Packed: the tap's output is read as whole pixels.
+      c.read = (packed && tap_in_range(p) ? 4 : 3) * kFloat;
       c.written = 3 * kFloat;
-      c.planes = "R color 3; W color history 3";
+      c.planes = packed && tap_in_range(p) ? "R packed 4; W color history 3"
+                                           : "R color 3; W color history 3";
       break;
     case Stage::Remodulate:
-      c.read = (3 + 3 + e) * kFloat;  // filtered illumination, albedo, emission
+      c.read = ((packed ? 4 : 3) + 3 + e) * kFloat;  // filtered illumination, albedo, emission
       c.written = 3 * kFloat;
       c.ops = kRemodulate + (emission ? 3 : 0);
-      c.planes = "R filtered 3, albedo 3, emission 3 (if any); W output 3";
+      c.planes = packed ? "R packed 4, albedo 3, emission 3 (if any); W output 3"
+                        : "R filtered 3, albedo 3, emission 3 (if any); W output 3";
       break;
     default:
       break;

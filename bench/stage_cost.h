@@ -78,6 +78,9 @@ struct FrameTraits {
   bool split = false;             // SVGF filters direct and indirect apart (split_sum runs)
   double surface_fraction = 1.0;  // the share of pixels with a surface
   int width = 0, height = 0;      // the stratum image's share of pixels; 0: a ninth
+  // Exact mode over packed pixels, as the CUDA engine runs it (methods/svgf/flavors.h:
+  // SvgfExactPacked): the demodulation packs the guides, the filter reads packed pixels.
+  bool packed_exact = false;
 };
 
 // Cost of `stage` in one frame, all a-trous iterations together for Stage::Atrous and

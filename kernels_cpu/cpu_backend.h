@@ -5,6 +5,8 @@
 //   kDeviceFrames                          whether frames in GPU memory can be denoised where
 //                                          they lie (the CUDA backend; DeviceFrame overloads
 //                                          of begin_frame, inputs, output, finish)
+//   kPackedStorage                         whether exact mode filters over packed pixels
+//                                          (SVGF's SvgfExactPacked) instead of planes
 //   void begin_frame(frame, out)           the frame's bookkeeping starts (engine.begin_frame)
 //   using Buffer; allocate(buffer, channels, what)  a planar float buffer of the frame's size,
 //                                          zero-filled
@@ -43,6 +45,8 @@ class CpuBackend {
   using Engine = CpuEngine;
   using Buffer = Image;
   static constexpr bool kDeviceFrames = false;
+  // Exact mode over planes: the row drivers stream them (kernels_cpu/svgf_rows.cpp).
+  static constexpr bool kPackedStorage = false;
 
   explicit CpuBackend(const EngineConfig& config) : engine_(config.threads) {
     if (config.mode != Mode::Exact)

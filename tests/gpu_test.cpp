@@ -375,10 +375,11 @@ class MirrorEngine {
   std::map<std::string, int> calls_;
 };
 
-// The CPU denoiser's buffers, in an arena: inputs, two guide slots, two history slots, scratch.
+// The CPU denoiser's buffers, in an arena: inputs, two guide slots, two history slots, scratch
+// (the packed guides too, for the packed flavor: CUDA's exact mode).
 class ArenaPipeline {
  public:
-  ArenaPipeline(int w, int h) : arena_(w, h, 54) {
+  ArenaPipeline(int w, int h) : arena_(w, h, 59) {  // 58 planes and the packed regions' pads
     color_ = arena_.rgb("color");
     albedo_ = arena_.rgb("albedo");
     for (int s = 0; s < 2; ++s) guides_[s] = arena_.guides("guides slot " + std::to_string(s));
@@ -390,11 +391,13 @@ class ArenaPipeline {
     }
     illumination_ = arena_.rgb("illumination");
     accumulated_ = arena_.illum_var("accumulated");
-    signal_[0] = arena_.planes("a-trous signal 0", 4);
-    signal_[1] = arena_.planes("a-trous signal 1", 4);
+    signal_[0] = arena_.planes("a-trous signal 0", 4, false, true);
+    signal_[1] = arena_.planes("a-trous signal 1", 4, false, true);
+    packed_guides_ = arena_.planes("packed guides", 4, false, true);
     output_ = arena_.rgb("output");
   }
 
+  template <class Flavor>
   void frame(const Frame& f, bool reset, const SvgfParams& p, const std::string& where) {
     const size_t n = arena_.pixels();
     auto put = [&](const float* src, const float* dst, size_t count) {
@@ -430,9 +433,10 @@ class ArenaPipeline {
     b.accumulated = accumulated_;
     b.signal[0] = signal_[0];
     b.signal[1] = signal_[1];
+    b.packed_guides = packed_guides_;
     b.output = output_;
     MirrorEngine engine(arena_, where);
-    run_svgf_frame(engine, b, p, has_history_);
+    run_svgf_frame<Flavor>(engine, b, p, has_history_);
     slot_ = next;
     input_ = 1 - input_;
     has_history_ = true;
@@ -446,14 +450,19 @@ class ArenaPipeline {
   float* history_[2] = {};
   IllumVarView accumulated_;
   float* signal_[2] = {};
+  float* packed_guides_ = nullptr;
   int slot_ = 0, input_ = 0;
   bool has_history_ = false;
 };
 
 }  // namespace
 
-TEST_CASE("stages inside the pipeline: CPU vs CUDA bitwise on every fixture's frames",
-          "[stage][fixture]") {
+namespace {
+
+// Every stage of `Flavor`'s frames: SvgfExact (planes, the CPU's) and SvgfExactPacked (packed
+// pixels, what the CUDA denoiser runs in exact mode).
+template <class Flavor>
+void mirror_pipeline_stages(const char* flavor) {
   // Frames 0..5 cover no history, young history (spatial variance) and the temporal estimate.
   const int cap = options().reduced ? 2 : 6;
   for (const std::string& dir : fixture_dirs()) {
@@ -461,8 +470,8 @@ TEST_CASE("stages inside the pipeline: CPU vs CUDA bitwise on every fixture's fr
     const int frames = std::min(seq.size(), cap);
     ArenaPipeline pipeline(seq.manifest().width, seq.manifest().height);
     for (int k = 0; k < frames; ++k)
-      pipeline.frame(seq.read(k), seq.is_camera_cut(k), SvgfParams(),
-                     dir + " frame " + std::to_string(k));
+      pipeline.frame<Flavor>(seq.read(k), seq.is_camera_cut(k), SvgfParams(),
+                             std::string(flavor) + ", " + dir + " frame " + std::to_string(k));
   }
   // The synthetic scene too (always there, and it has a moving object); odd size on purpose.
   test::SyntheticScene scene;
@@ -473,7 +482,16 @@ TEST_CASE("stages inside the pipeline: CPU vs CUDA bitwise on every fixture's fr
   p.iterations = 5;  // the paper's count, feeding back the first iteration
   p.feedback_tap = 0;
   for (int k = 0; k < cap; ++k)
-    pipeline.frame(scene.frame(k), false, p, "synthetic frame " + std::to_string(k));
+    pipeline.frame<Flavor>(scene.frame(k), false, p,
+                           std::string(flavor) + ", synthetic frame " + std::to_string(k));
+}
+
+}  // namespace
+
+TEST_CASE("stages inside the pipeline: CPU vs CUDA bitwise on every fixture's frames",
+          "[stage][fixture]") {
+  mirror_pipeline_stages<SvgfExact>("planes");
+  mirror_pipeline_stages<SvgfExactPacked>("packed");
 }
 
 // ---------------------------------------------------------------------------------------------

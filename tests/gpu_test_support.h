@@ -54,7 +54,8 @@ class Arena {
   const std::vector<float>& host() const { return host_; }
   const std::vector<Region>& regions() const { return regions_; }
 
-  int planes_used() const { return static_cast<int>(used_ / pixels()); }
+  // Whole planes covering every region (and the pads before packed ones).
+  int planes_used() const { return static_cast<int>((used_ + pixels() - 1) / pixels()); }
   // "region[k]" for each plane in use, for failure messages.
   std::vector<std::string> plane_names() const {
     std::vector<std::string> names;
@@ -63,7 +64,10 @@ class Arena {
     return names;
   }
 
-  float* planes(const std::string& name, int channels, bool bytes = false) {
+  // `packed`: the region holds Packed4 pixels, so it starts on 16 bytes (the arena's base is
+  // 16-byte aligned on both sides; a pad of up to 3 floats before it).
+  float* planes(const std::string& name, int channels, bool bytes = false, bool packed = false) {
+    if (packed) used_ = (used_ + 3) / 4 * 4;
     const size_t offset = used_;
     used_ += static_cast<size_t>(channels) * pixels();
     REQUIRE(used_ <= host_.size());

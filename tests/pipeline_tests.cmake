@@ -1,5 +1,6 @@
 svgf_add_device_tests(svgf_pipeline_tests DENOISERS_ONLY
   SOURCES svgf_pipeline_test.cpp svgf_asvgf_test.cpp svgf_split_test.cpp bad_input_test.cpp gaussian_test.cpp svgf_params_test.cpp gaussian_params_test.cpp numerical_stress_test.cpp
+          svgf_packed_exact_test.cpp
   LIBS svgf_pipeline svgf_metrics svgf_io)
 # The CPU kernels' instruction-set variants: same bits on each, the run-time pick; a variant this
 # CPU cannot run reports Skipped. And the proof on the built archive that no variant's code can

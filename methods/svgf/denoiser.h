@@ -23,7 +23,7 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
   SvgfDenoiser(const SvgfParams& params, const EngineConfig& config)
       : params_(params), mode_(config.mode), backend_(config) {
     params_.validate();
-    backend_.set_method_planes(2 * (3 + 2 + 1 + 4) + 3 + 4 + (mode_ == Mode::Fast ? 4 : 0) +
+    backend_.set_method_planes(2 * (3 + 2 + 1 + 4) + 3 + 4 + (packs_guides() ? 4 : 0) +
                                (gradient_mode() ? 1 : 0) + (params_.taa ? 3 * 3 : 0));
   }
 
@@ -95,13 +95,18 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
       indirect.color = cur.indirect;
       indirect.emission = {};  // the emission is part of direct
     }
+    if (packs_guides())
+      b.packed_guides = indirect.packed_guides = backend_.plane(packed_guides_, 0);
 #if defined(__CUDACC__)
     if (mode_ == Mode::Fast) {
-      b.packed_guides = indirect.packed_guides = backend_.plane(packed_guides_, 0);
       run<SvgfFast>(engine, split, b, indirect);
     } else
 #endif
+    if constexpr (Backend::kPackedStorage) {
+      run<SvgfExactPacked>(engine, split, b, indirect);
+    } else {
       run<SvgfExact>(engine, split, b, indirect);
+    }
     // The host path waits for the frame here and raises any fault of its kernels; the
     // device path returns (the faults show in last_report()).
     backend_.finish(in, out);
@@ -114,6 +119,9 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
   }
 
   bool gradient_mode() const { return params_.antilag == Antilag::Gradient; }
+  // The flavor run filters against packed guides: fast mode, and exact mode on a backend with
+  // packed storage (methods/svgf/flavors.h).
+  bool packs_guides() const { return mode_ == Mode::Fast || Backend::kPackedStorage; }
 
   // A frame has gradient samples when it carries the group and at least one stratum holds one
   // (the first frame and the frame after a cut have none); else the statistics anti-lag runs.
@@ -201,7 +209,7 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
       }
       backend_.allocate(illumination_, 3, "illumination");
       backend_.allocate(accumulated_, 4, "accumulation");
-      if (mode_ == Mode::Fast) backend_.allocate(packed_guides_, 4, "packed guides");
+      if (packs_guides()) backend_.allocate(packed_guides_, 4, "packed guides");
       if (params_.taa) {
         backend_.allocate(remodulated_, 3, "remodulated color");
         for (auto& t : taa_history_) backend_.allocate(t, 3, "TAA history");

@@ -1,6 +1,7 @@
 #pragma once
 // How SVGF's functors are evaluated and stored: exact mode (ExactArith over separate float
-// planes) or fast mode (FastArith over packed Packed4 pixels, CUDA only). A flavor is a choice
+// planes on the CPU, over packed Packed4 pixels on CUDA) or fast mode (FastArith over packed
+// pixels, CUDA only). A flavor is a choice
 // of arithmetic and storage over the same functors, never a second copy of a formula; it also
 // says whether the pipeline fuses stages into one launch (methods/svgf/pipeline.h).
 #include "core/arith.h"
@@ -29,6 +30,26 @@ struct SvgfExact {
   // The a-trous and spatial-variance taps as one loop with bounds tests (a second, test-free
   // copy for interior pixels made the exact kernels larger and slower: the a-trous on the H100,
   // the variance on the H200).
+  static constexpr bool kSplitInterior = false;
+  template <class Body>
+  static void with_normal_power(float phi_normal, const Body& body) {
+    with_normal_power_of<Arith>(phi_normal, body);
+  }
+};
+
+// Exact arithmetic over fast mode's packed storage: what the CUDA engine runs in exact mode.
+// Storage is not arithmetic, so it gives SvgfExact's bits (tests/svgf_packed_exact_test.cpp runs
+// both on the CPU, bitwise); on the GPU an a-trous tap loads its color + variance and its
+// depth + normal as two 16-byte loads instead of eight 4-byte ones, and computes two addresses
+// instead of eight (the exact a-trous is issue-bound: docs/benchmarks.md). The CPU keeps
+// SvgfExact: its row drivers stream planes (kernels_cpu/svgf_rows.cpp).
+struct SvgfExactPacked {
+  using Arith = ExactArith;
+  using Guides = PackedGuides;
+  using Signal = PackedIllumVar<Packed4>;
+  using ConstSignal = PackedIllumVar<const Packed4>;
+  // Each stage its own pass, as SvgfExact; the demodulation also packs the guides.
+  static constexpr bool kFused = false;
   static constexpr bool kSplitInterior = false;
   template <class Body>
   static void with_normal_power(float phi_normal, const Body& body) {

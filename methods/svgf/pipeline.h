@@ -48,10 +48,10 @@ struct SvgfFrameBuffers {
   // Scratch.
   RgbView illumination;
   IllumVarView accumulated;
-  // The a-trous ping-pong: 4 floats a pixel each, 16-byte aligned. Exact mode uses them as four
-  // planes (filtered[k]), fast mode as packed pixels (packed[k]).
+  // The a-trous ping-pong: 4 floats a pixel each, 16-byte aligned. SvgfExact uses them as four
+  // planes (filtered[k]), the packed flavors as packed pixels (packed[k]).
   float* signal[2] = {nullptr, nullptr};
-  float* packed_guides = nullptr;  // fast mode: 4 floats a pixel (depth, normal)
+  float* packed_guides = nullptr;  // packed flavors: 4 floats a pixel (depth, normal)
   // A-SVGF (methods/svgf/gradient.h): this frame's gradient samples (no planes: the frame has
   // none, or the anti-lag mode does not read them) and kGradientStratumPlanes planes of the
   // stratum image, strata_along(width) x strata_along(height) floats each.
@@ -86,16 +86,13 @@ struct SvgfFrameBuffers {
   }
 };
 
-// The a-trous buffer k and the guides as a flavor stores them.
+// The a-trous buffer k and the guides as a flavor stores them: planes (SvgfExact), or packed
+// pixels (the packed flavors; the guides packed by the demodulation stage).
 inline IllumVarView signal_buffer(SvgfExact, const SvgfFrameBuffers& b, int k) {
   return b.filtered(k);
 }
 inline GuideView filter_guides(SvgfExact, const SvgfFrameBuffers& b) { return b.guides; }
-#if defined(__CUDACC__)
-inline PackedIllumVar<Packed4> signal_buffer(SvgfFast, const SvgfFrameBuffers& b, int k) {
-  return b.packed(k);
-}
-inline PackedGuides filter_guides(SvgfFast, const SvgfFrameBuffers& b) {
+inline PackedGuides packed_filter_guides(const SvgfFrameBuffers& b) {
   PackedGuides g;
   g.width = b.guides.width;
   g.height = b.guides.height;
@@ -104,7 +101,35 @@ inline PackedGuides filter_guides(SvgfFast, const SvgfFrameBuffers& b) {
   g.depth_dy = b.guides.depth_dy;
   return g;
 }
+inline PackedIllumVar<Packed4> signal_buffer(SvgfExactPacked, const SvgfFrameBuffers& b, int k) {
+  return b.packed(k);
+}
+inline PackedGuides filter_guides(SvgfExactPacked, const SvgfFrameBuffers& b) {
+  return packed_filter_guides(b);
+}
+#if defined(__CUDACC__)
+inline PackedIllumVar<Packed4> signal_buffer(SvgfFast, const SvgfFrameBuffers& b, int k) {
+  return b.packed(k);
+}
+inline PackedGuides filter_guides(SvgfFast, const SvgfFrameBuffers& b) {
+  return packed_filter_guides(b);
+}
 #endif
+
+// Whether a flavor filters against packed guides (SvgfFrameBuffers::packed_guides, 4 floats a
+// pixel, filled by the demodulation stage).
+template <class Flavor>
+inline constexpr bool kPacksGuides = std::is_same_v<typename Flavor::Guides, PackedGuides>;
+
+// The feedback tap's copy of the filtered color into the color history, from a flavor's
+// storage (an unfused pipeline's own pass).
+inline CopyRgbKernel feedback_copy_kernel(SvgfExact, const SvgfFrameBuffers& b, int k) {
+  return CopyRgbKernel{b.guides.width, b.filtered(k).color, b.next_color};
+}
+inline ForwardKernel<PackedIllumVar<const Packed4>, ColorOnlySink> feedback_copy_kernel(
+    SvgfExactPacked, const SvgfFrameBuffers& b, int k) {
+  return {b.guides.width, b.packed(k), ColorOnlySink{b.next_color}};
+}
 
 // The first two stages' kernels for a frame (exact arithmetic in every mode: the history
 // decisions of fast mode are exact mode's).
@@ -214,14 +239,18 @@ void run_svgf_signal(Engine& engine, const SvgfFrameBuffers& b, const SvgfParams
   // 1. (color - emission) / albedo -> illumination (the inputs are sanitized already).
   // 2. illumination + history -> accumulated color, moments and history length.
   //    Fused, the same thread reprojects the illumination it just wrote, and packs the guides.
+  //    Unfused with packed guides, the demodulation packs them.
+  const PackGuidesKernel pack{b.guides, reinterpret_cast<Packed4*>(b.packed_guides)};
   if constexpr (Flavor::kFused) {
     engine.run(stage::kDemodulate,
                then(demodulate_kernel_for(b, p),
-                    then(reproject_kernel_for(b, p, has_history, lambda),
-                         PackGuidesKernel{b.guides, reinterpret_cast<Packed4*>(b.packed_guides)})),
+                    then(reproject_kernel_for(b, p, has_history, lambda), pack)),
                w, h);
   } else {
-    engine.run(stage::kDemodulate, demodulate_kernel_for(b, p), w, h);
+    if constexpr (kPacksGuides<Flavor>)
+      engine.run(stage::kDemodulate, then(demodulate_kernel_for(b, p), pack), w, h);
+    else
+      engine.run(stage::kDemodulate, demodulate_kernel_for(b, p), w, h);
     engine.run(stage::kReproject, reproject_kernel_for(b, p, has_history, lambda), w, h);
   }
   const auto guides = filter_guides(flavor, b);
@@ -257,8 +286,7 @@ void run_svgf_signal(Engine& engine, const SvgfFrameBuffers& b, const SvgfParams
       } else {
         iterate(signal(1 - current));
         if (feedback)
-          engine.run(stage::kFeedback,
-                     CopyRgbKernel{w, b.filtered(1 - current).color, b.next_color}, w, h);
+          engine.run(stage::kFeedback, feedback_copy_kernel(flavor, b, 1 - current), w, h);
       }
       current = 1 - current;
     }

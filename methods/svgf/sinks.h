@@ -8,6 +8,12 @@
 
 namespace svgf {
 
+// Stores a result's color alone: the feedback tap's copy out of packed storage.
+struct ColorOnlySink {
+  RgbView out;
+  SVGF_HD void store(int i, ColorVar v) const { out.store(i, v.color); }
+};
+
 // Stores into `out` and copies the color into the history: the feedback tap's iteration.
 template <class Out>
 struct FeedbackTee {

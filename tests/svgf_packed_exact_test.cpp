@@ -1,0 +1,173 @@
+// Exact mode's two storages give the same bits. The CUDA engine runs exact mode over packed
+// pixels (methods/svgf/flavors.h: SvgfExactPacked), the CPU over planes (SvgfExact, with its row
+// drivers); storage is not arithmetic, so the two must agree bit for bit. Here both run on the
+// CPU: the SVGF denoiser over a CPU backend that stores packed, against the CPU's own denoiser,
+// frame by frame, the output and every debug buffer, on every fixture and on synthetic frames
+// with settings that take each branch of the frame (methods/svgf/pipeline.h). The GPU tests then
+// compare the CUDA denoiser with the CPU's (docs/cuda.md).
+#include <algorithm>
+#include <filesystem>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "io/sequence.h"
+#include "kernels_cpu/cpu_backend.h"
+#include "methods/svgf/denoiser.h"
+#include "pipeline/make_denoiser.h"
+#include "synthetic_sequence.h"
+#include "test_support.h"
+
+using namespace svgf;
+
+namespace {
+
+// The CPU backend with the CUDA backend's storage choice: the denoiser then runs the packed
+// flavor (its kernels through the generic per-pixel driver).
+struct PackedCpuBackend : cpu::CpuBackend {
+  using CpuBackend::CpuBackend;
+  static constexpr bool kPackedStorage = true;
+};
+
+// The committed sequences (SVGF_FIXTURES_DIR overrides where they are, as for the GPU tests).
+std::vector<std::string> fixture_dirs() {
+  namespace fs = std::filesystem;
+  const char* env = std::getenv("SVGF_FIXTURES_DIR");
+  const fs::path root = env ? fs::path(env) : fs::path(SVGF_SOURCE_DIR) / "fixtures";
+  std::vector<std::string> dirs;
+  if (!fs::is_directory(root)) return dirs;
+  for (const auto& e : fs::directory_iterator(root))
+    if (e.is_directory() && fs::exists(e.path() / "manifest.json"))
+      dirs.push_back(e.path().string());
+  std::sort(dirs.begin(), dirs.end());
+  return dirs;
+}
+
+// Both denoisers over `frames`; `cut[k]`: reset both before frame k.
+void require_same_bits(const SvgfParams& p, const std::vector<Frame>& frames,
+                       const std::vector<bool>& cut, const std::string& what) {
+  DenoiserConfig c;
+  c.svgf = p;
+  c.threads = 2;
+  const std::unique_ptr<Denoiser> planes = make_denoiser(c);
+  EngineConfig e;
+  e.threads = 2;
+  SvgfDenoiser<PackedCpuBackend> packed(p, e);
+  for (size_t k = 0; k < frames.size(); ++k) {
+    if (k < cut.size() && cut[k]) {
+      planes->reset();
+      packed.reset();
+    }
+    Image a, b;
+    planes->denoise(frames[k], a);
+    packed.denoise(frames[k], b);
+    const std::string at = what + ", frame " + std::to_string(k);
+    test::require_identical(b, a, at + ": output");
+    for (const std::string& name : planes->debug_buffers())
+      test::require_identical(packed.read_buffer(name), planes->read_buffer(name),
+                              at + ": debug buffer " + name);
+  }
+}
+
+std::vector<Frame> synthetic_frames(int n, int width = 61, int height = 37) {
+  test::SyntheticScene scene;
+  scene.width = width;  // odd sizes: partial strata, borders on every side
+  scene.height = height;
+  std::vector<Frame> frames;
+  for (int k = 0; k < n; ++k) frames.push_back(scene.frame(k));
+  return frames;
+}
+
+// Color split into a direct part and a noisier indirect one (direct + indirect = color up to
+// rounding, which the filter does not need).
+std::vector<Frame> split_frames(std::vector<Frame> frames) {
+  std::mt19937 rng(17u);
+  std::uniform_real_distribution<float> share(0.2f, 0.8f);
+  for (Frame& f : frames) {
+    f.direct = f.color;
+    f.indirect = Image(f.width(), f.height(), 3);
+    for (int c = 0; c < 3; ++c)
+      for (size_t i = 0; i < f.color.pixel_count(); ++i) {
+        const float s = share(rng);
+        f.direct.plane(c)[i] = s * f.color.plane(c)[i];
+        f.indirect.plane(c)[i] = (1.f - s) * f.color.plane(c)[i];
+      }
+  }
+  return frames;
+}
+
+// A-SVGF's gradient samples: one per 3x3 stratum (from the second frame on), at a pixel that
+// moves with the frame, the previous luminance perturbed so that some strata see a change.
+std::vector<Frame> gradient_frames(std::vector<Frame> frames) {
+  std::mt19937 rng(23u);
+  std::uniform_real_distribution<float> change(0.5f, 1.5f);
+  for (size_t k = 0; k < frames.size(); ++k) {
+    Frame& f = frames[k];
+    f.gradient = Image(f.width(), f.height(), 3);
+    if (k == 0) continue;  // no previous sample to re-shade
+    for (int sy = 0; sy * 3 < f.height(); ++sy)
+      for (int sx = 0; sx * 3 < f.width(); ++sx) {
+        const int x = std::min(f.width() - 1, sx * 3 + static_cast<int>(k % 3));
+        const int y = std::min(f.height() - 1, sy * 3 + static_cast<int>((k / 3) % 3));
+        const Vec3 c = f.color.rgb().load(y * f.width() + x);
+        const float l = 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z;
+        f.gradient.at(x, y, 0) = (sx + sy) % 4 == 0 ? l * change(rng) : l;
+        f.gradient.at(x, y, 1) = l;
+        f.gradient.at(x, y, 2) = 1.f;
+      }
+  }
+  return frames;
+}
+
+}  // namespace
+
+TEST_CASE("exact mode over packed storage: the same bits as over planes, every fixture",
+          "[pipeline][packed]") {
+  const std::vector<std::string> dirs = fixture_dirs();
+  REQUIRE_FALSE(dirs.empty());
+  for (const std::string& dir : dirs) {
+    const io::Sequence seq(dir);
+    std::vector<Frame> frames;
+    std::vector<bool> cut;
+    for (int k = 0; k < std::min(seq.size(), 8); ++k) {
+      frames.push_back(seq.read(k));
+      cut.push_back(seq.is_camera_cut(k));
+    }
+    require_same_bits(SvgfParams(), frames, cut, dir);
+  }
+}
+
+TEST_CASE("exact mode over packed storage: the same bits in every branch of the frame",
+          "[pipeline][packed]") {
+  const std::vector<Frame> frames = synthetic_frames(7);
+  const std::vector<bool> cut = {false, false, false, false, true, false, false};
+  struct Setting {
+    const char* name;
+    void (*edit)(SvgfParams&);
+  };
+  const Setting settings[] = {
+      {"defaults", [](SvgfParams&) {}},
+      {"paper: 5 iterations, feedback tap 0",
+       [](SvgfParams& p) { p.iterations = 5; p.feedback_tap = 0; }},
+      {"feedback tap on the last iteration",
+       [](SvgfParams& p) { p.iterations = 3; p.feedback_tap = 2; }},
+      {"no feedback tap", [](SvgfParams& p) { p.feedback_tap = -1; }},
+      {"no iterations", [](SvgfParams& p) { p.iterations = 0; }},
+      {"run-time normal power", [](SvgfParams& p) { p.phi_normal = 100.f; }},
+      {"statistics anti-lag", [](SvgfParams& p) { p.antilag = Antilag::Statistics; }},
+      {"TAA", [](SvgfParams& p) { p.taa = true; }},
+  };
+  for (const Setting& s : settings) {
+    SvgfParams p;
+    s.edit(p);
+    require_same_bits(p, frames, cut, s.name);
+  }
+  SvgfParams split;
+  split.split = SplitMode::On;
+  require_same_bits(split, split_frames(frames), cut, "direct and indirect");
+  SvgfParams gradient;
+  gradient.antilag = Antilag::Gradient;
+  require_same_bits(gradient, gradient_frames(frames), cut, "gradient anti-lag");
+}
