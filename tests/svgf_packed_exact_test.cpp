@@ -35,7 +35,8 @@ struct PackedCpuBackend : cpu::CpuBackend {
 std::vector<std::string> fixture_dirs() {
   namespace fs = std::filesystem;
   const char* env = std::getenv("SVGF_FIXTURES_DIR");
-  const fs::path root = env ? fs::path(env) : fs::path(SVGF_SOURCE_DIR) / "fixtures";
+  fs::path root = env ? fs::path(env) : fs::path(SVGF_SOURCE_DIR) / "fixtures";
+  if (!env && !fs::is_directory(root)) root = "fixtures";  // a copied binary, run from a checkout
   std::vector<std::string> dirs;
   if (!fs::is_directory(root)) return dirs;
   for (const auto& e : fs::directory_iterator(root))

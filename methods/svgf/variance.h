@@ -82,7 +82,7 @@ struct VarianceEstimate {
     // without the bounds tests where the footprint is inside: the same taps in the same order.
     // (Exact mode's kernel got no faster so on the H200: 0.219 ms against 0.200 at 1080p
     // camera-pan, docs/benchmarks.md.)
-    if (Flavor::kSplitInterior && r == kDefaultRadius) {
+    if (Flavor::kSplitInteriorVariance && r == kDefaultRadius) {
       if (x >= r && y >= r && x < guides.width - r && y < guides.height - r)
         taps<kDefaultRadius, false>(x, y, r, c, inv_phi_z, inv_phi_l, normal_power, s);
       else
