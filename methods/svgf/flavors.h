@@ -1,9 +1,9 @@
 #pragma once
 // How SVGF's functors are evaluated and stored: exact mode (ExactArith over separate float
 // planes on the CPU, over packed Packed4 pixels on CUDA) or fast mode (FastArith over packed
-// pixels, CUDA only). A flavor is a choice
-// of arithmetic and storage over the same functors, never a second copy of a formula; it also
-// says whether the pipeline fuses stages into one launch (methods/svgf/pipeline.h).
+// pixels, CUDA only). A flavor is a choice of arithmetic and storage over the same functors,
+// never a second copy of a formula; it also says whether the pipeline fuses stages into one
+// launch (methods/svgf/pipeline.h).
 #include "core/arith.h"
 #include "core/views.h"
 #include "methods/svgf/edge_stopping.h"
