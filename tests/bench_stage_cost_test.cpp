@@ -603,6 +603,44 @@ TEST_CASE("stage cost: split_sum's and TAA's planes are the kernel's", "[bench][
   }
 }
 
+TEST_CASE("stage cost: CUDA's exact mode over packed pixels differs where the packing moves bytes",
+          "[bench][stage_cost]") {
+  // methods/svgf/flavors.h, SvgfExactPacked: the demodulation also packs depth + normal; the
+  // filter reads 16-byte pixels (the same floats on a surface); the feedback copy and the
+  // remodulation read a whole packed pixel for its color. Operations do not change.
+  const SvgfParams p;
+  const auto cost = [&](Stage s, double surface, bool packed, const SvgfParams& params) {
+    bench::FrameTraits f = frames(surface, 1920, 1080);
+    f.emission = true;
+    f.packed_exact = packed;
+    return bench::stage_cost(Mode::Exact, s, params, f);
+  };
+  const auto delta = [&](Stage s, double surface, const SvgfParams& params = SvgfParams()) {
+    const bench::StageCost a = cost(s, surface, true, params), b = cost(s, surface, false, params);
+    CHECK(a.ops == b.ops);
+    return std::make_pair(a.read - b.read, a.written - b.written);
+  };
+  for (double surface : {0.0, 1.0}) {
+    CHECK(delta(Stage::Demodulate, surface) == std::make_pair(16.0, 16.0));
+    CHECK(delta(Stage::Reproject, surface) == std::make_pair(0.0, 0.0));
+    CHECK(delta(Stage::Remodulate, surface) == std::make_pair(4.0, 0.0));
+  }
+  SvgfParams tap = p;  // the tap's filtered color is copied out of a packed pixel
+  tap.feedback_tap = 1;
+  CHECK(delta(Stage::Feedback, 1.0, tap) == std::make_pair(4.0, 0.0));
+  CHECK(delta(Stage::Atrous, 1.0) == std::make_pair(0.0, 0.0));
+  CHECK(delta(Stage::Atrous, 0.0) == std::make_pair(p.iterations * 3 * 4.0, 0.0));
+  CHECK(delta(Stage::Variance, 1.0) == std::make_pair(0.0, 0.0));
+  CHECK(delta(Stage::Variance, 0.0) == std::make_pair(12.0, 0.0));
+  SvgfParams no_tap = p;  // the accumulation's color planes are copied as before
+  no_tap.feedback_tap = -1;  // (the defaults' own)
+  CHECK(delta(Stage::Feedback, 1.0, no_tap) == std::make_pair(0.0, 0.0));
+  // Fast mode has its own model, which the flag does not touch.
+  bench::FrameTraits f = frames(1.0, 1920, 1080), g = f;
+  g.packed_exact = true;
+  CHECK(bench::frame_cost(Mode::Fast, p, f).read == bench::frame_cost(Mode::Fast, p, g).read);
+}
+
 TEST_CASE("stage cost: a stage the configuration does not run costs nothing",
           "[bench][stage_cost][asvgf]") {
   // `defaults` here: no anti-lag (the defaults' own anti-lag is `gradient`).
