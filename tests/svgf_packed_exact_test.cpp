@@ -112,8 +112,7 @@ std::vector<Frame> gradient_frames(std::vector<Frame> frames) {
       for (int sx = 0; sx * 3 < f.width(); ++sx) {
         const int x = std::min(f.width() - 1, sx * 3 + static_cast<int>(k % 3));
         const int y = std::min(f.height() - 1, sy * 3 + static_cast<int>((k / 3) % 3));
-        const Vec3 c = f.color.rgb().load(y * f.width() + x);
-        const float l = 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z;
+        const float l = luminance(f.color.rgb().load(y * f.width() + x));
         f.gradient.at(x, y, 0) = (sx + sy) % 4 == 0 ? l * change(rng) : l;
         f.gradient.at(x, y, 1) = l;
         f.gradient.at(x, y, 2) = 1.f;

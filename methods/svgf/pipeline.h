@@ -86,49 +86,46 @@ struct SvgfFrameBuffers {
   }
 };
 
-// The a-trous buffer k and the guides as a flavor stores them: planes (SvgfExact), or packed
-// pixels (the packed flavors; the guides packed by the demodulation stage).
-inline IllumVarView signal_buffer(SvgfExact, const SvgfFrameBuffers& b, int k) {
-  return b.filtered(k);
-}
-inline GuideView filter_guides(SvgfExact, const SvgfFrameBuffers& b) { return b.guides; }
-inline PackedGuides packed_filter_guides(const SvgfFrameBuffers& b) {
-  PackedGuides g;
-  g.width = b.guides.width;
-  g.height = b.guides.height;
-  g.depth_normal_data = reinterpret_cast<const Packed4*>(b.packed_guides);
-  g.depth_dx = b.guides.depth_dx;
-  g.depth_dy = b.guides.depth_dy;
-  return g;
-}
-inline PackedIllumVar<Packed4> signal_buffer(SvgfExactPacked, const SvgfFrameBuffers& b, int k) {
-  return b.packed(k);
-}
-inline PackedGuides filter_guides(SvgfExactPacked, const SvgfFrameBuffers& b) {
-  return packed_filter_guides(b);
-}
-#if defined(__CUDACC__)
-inline PackedIllumVar<Packed4> signal_buffer(SvgfFast, const SvgfFrameBuffers& b, int k) {
-  return b.packed(k);
-}
-inline PackedGuides filter_guides(SvgfFast, const SvgfFrameBuffers& b) {
-  return packed_filter_guides(b);
-}
-#endif
-
-// Whether a flavor filters against packed guides (SvgfFrameBuffers::packed_guides, 4 floats a
-// pixel, filled by the demodulation stage).
+// How a flavor stores the a-trous signal and the guides: planes (SvgfExact), or packed pixels
+// (the packed flavors; the guides packed by the demodulation stage into b.packed_guides).
+template <class Flavor>
+inline constexpr bool kPacksSignal =
+    std::is_same_v<typename Flavor::Signal, PackedIllumVar<Packed4>>;
 template <class Flavor>
 inline constexpr bool kPacksGuides = std::is_same_v<typename Flavor::Guides, PackedGuides>;
 
-// The feedback tap's copy of the filtered color into the color history, from a flavor's
-// storage (an unfused pipeline's own pass).
-inline CopyRgbKernel feedback_copy_kernel(SvgfExact, const SvgfFrameBuffers& b, int k) {
-  return CopyRgbKernel{b.guides.width, b.filtered(k).color, b.next_color};
+// The a-trous buffer k as the flavor stores it.
+template <class Flavor>
+auto signal_buffer(Flavor, const SvgfFrameBuffers& b, int k) {
+  if constexpr (kPacksSignal<Flavor>) return b.packed(k);
+  else return b.filtered(k);
 }
-inline ForwardKernel<PackedIllumVar<const Packed4>, ColorOnlySink> feedback_copy_kernel(
-    SvgfExactPacked, const SvgfFrameBuffers& b, int k) {
-  return {b.guides.width, b.packed(k), ColorOnlySink{b.next_color}};
+
+// The guides the filter stages read, as the flavor stores them.
+template <class Flavor>
+auto filter_guides(Flavor, const SvgfFrameBuffers& b) {
+  if constexpr (kPacksGuides<Flavor>) {
+    PackedGuides g;
+    g.width = b.guides.width;
+    g.height = b.guides.height;
+    g.depth_normal_data = reinterpret_cast<const Packed4*>(b.packed_guides);
+    g.depth_dx = b.guides.depth_dx;
+    g.depth_dy = b.guides.depth_dy;
+    return g;
+  } else {
+    return b.guides;
+  }
+}
+
+// The feedback tap's copy of the filtered color into the color history, from the flavor's
+// storage (an unfused pipeline's own pass): a plane copy, or the color of packed pixels.
+template <class Flavor>
+auto feedback_copy_kernel(Flavor, const SvgfFrameBuffers& b, int k) {
+  if constexpr (kPacksSignal<Flavor>)
+    return ForwardKernel<PackedIllumVar<const Packed4>, ColorOnlySink>{
+        b.guides.width, b.packed(k), ColorOnlySink{b.next_color}};
+  else
+    return CopyRgbKernel{b.guides.width, b.filtered(k).color, b.next_color};
 }
 
 // The first two stages' kernels for a frame (exact arithmetic in every mode: the history
