@@ -14,6 +14,7 @@
 #include "bench/stage_cost.h"
 #include "core/order_stats.h"
 #include "methods/bmfr/denoiser.h"
+#include "methods/svgf/stages.h"
 
 namespace svgf::bench {
 namespace {
@@ -29,6 +30,42 @@ json summary_json(const OrderStats& s) {
   return {{"median", s.median}, {"p95", s.p95}, {"mean", s.mean},
           {"min", s.min},       {"max", s.max}, {"count", s.count}};
 }
+
+// The share of each timed frame's surface pixels whose history is young (below
+// spatial_variance_history), read back from SVGF's history length after the frame (outside the
+// timed call): the pixels the variance stage filters with its 7x7 estimate, which the cost
+// model counts (FrameTraits::young_fraction). Inactive for other methods.
+class YoungHistories {
+ public:
+  YoungHistories(const Denoiser& d, const RunConfig& c, bool split)
+      : min_history_(static_cast<float>(c.denoiser.svgf.spatial_variance_history)) {
+    const std::vector<std::string> names = d.debug_buffers();
+    active_ = c.denoiser.method == Method::Svgf && !split &&
+              std::find(names.begin(), names.end(), svgf_buffer::kHistoryLength) != names.end();
+  }
+  // After frame f: the rule of VarianceEstimate::common_path (a surface: depth > 0).
+  void add(const Denoiser& d, const Frame& f) {
+    if (!active_) return;
+    const Image length = d.read_buffer(svgf_buffer::kHistoryLength);
+    const float* depth = f.depth.plane(0);
+    const float* h = length.plane(0);
+    size_t surface = 0, young = 0;
+    for (size_t i = 0; i < f.depth.pixel_count(); ++i) {
+      if (!(depth[i] > 0.f)) continue;
+      ++surface;
+      young += h[i] < min_history_ ? 1 : 0;
+    }
+    shares_.push_back(surface ? static_cast<double>(young) / static_cast<double>(surface) : 0.0);
+  }
+  bool active() const { return active_ && !shares_.empty(); }
+  // The median frame's share, as the stage times compared with the floor are medians.
+  OrderStats stats() const { return order_stats(shares_); }
+
+ private:
+  float min_history_;
+  bool active_ = false;
+  std::vector<double> shares_;
+};
 
 // JSON has no infinities: a PSNR of identical images becomes null.
 json finite_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
@@ -78,6 +115,9 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
         "opencv " + c.baseline.label() + ", " + std::to_string(c.resolved_threads()) + " threads";
   }
 
+  std::optional<YoungHistories> young;
+  if (project) young.emplace(*den, c, split);
+
   std::vector<std::vector<double>> stage_ms(stage_names.size());
   std::vector<double> filter_ms, wall_ms;
   const auto load_before = load_average();
@@ -115,6 +155,7 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
     if (warm) continue;
     ++timed;
     wall_ms.push_back(wall);
+    if (young) young->add(*den, f);
     if (project) {
       const StageTimes& st = den->last_report().times;
       for (size_t s = 0; s < stage_names.size(); ++s) stage_ms[s].push_back(st[stage_names[s]]);
@@ -134,6 +175,9 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
                                    });
   const auto load_after = load_average();
   const double others = others_share(usage_before, cpu_usage());
+  const bool young_counted = young && young->active();
+  const OrderStats young_stats = young_counted ? young->stats() : OrderStats{};
+  if (young_counted) traits.young_fraction = young_stats.median;
 
   json j;
   j["config"] = config_json(c);
@@ -145,6 +189,11 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
       {"width", fs.width},    {"height", fs.height},         {"pixels", pixels},
       {"distinct_frames", n}, {"surface_fraction", surface}, {"emission", emission},
       {"gradient_samples", fs.gradient_samples()}};
+  if (young_counted)
+    j["input"]["young_fraction"] = {{"median", young_stats.median},
+                                    {"mean", young_stats.mean},
+                                    {"min", young_stats.min},
+                                    {"max", young_stats.max}};
   j["warmup"] = t.warmup;
   j["frames"] = timed;
   const OrderStats filter = order_stats(filter_ms), wall = order_stats(wall_ms);
@@ -408,6 +457,14 @@ void print_timing(const json& e, std::FILE* f) {
                  "the call itself %.3f ms)\n",
                  "frame wall", fm["device_wall"]["median"].get<double>(),
                  fm["device_wall"]["p95"].get<double>(), fm["device_call"]["median"].get<double>());
+  if (in.contains("young_fraction")) {
+    const json& y = in["young_fraction"];
+    std::fprintf(f,
+                 "  young histories (the variance's 7x7 estimate, in its floor): %.1f%% of the "
+                 "surface in the median frame (mean %.1f%%, %.1f to %.1f%%)\n",
+                 100 * y["median"].get<double>(), 100 * y["mean"].get<double>(),
+                 100 * y["min"].get<double>(), 100 * y["max"].get<double>());
+  }
   for (const json& s : e["stages"])
     if (s.contains("per_tap"))
       std::fprintf(f,

@@ -8,8 +8,10 @@
 //  - bytes: every plane the kernel reads, once, plus every plane it writes, once; 4 bytes a
 //    value. Neighbour taps are assumed served by the caches (that is the floor, not a model);
 //  - the steady state: a surface pixel whose history is at least spatial_variance_history frames
-//    old and whose four bilinear reprojection taps pass (the young-history 7x7 variance estimate
-//    and the 3x3 reprojection fallback are rare after the first frames);
+//    old and whose four bilinear reprojection taps pass (the 3x3 reprojection fallback is rare
+//    after the first frames). The young-history 7x7 variance estimate is not rare under a
+//    moving camera: the share of surface pixels that take it is a trait of the frames
+//    (FrameTraits::young_fraction, counted by the benchmark run), 0 in the steady state;
 //  - ops: floating-point operations (add, mul, compare/select, min/max, abs, floor, conversion;
 //    a division, square root or special function counts one) from the source. Fast mode is
 //    counted with FMA contraction (a multiply-add is one op), as it is compiled.
@@ -65,6 +67,15 @@ constexpr double kSanitize = 35;
 constexpr double kDemodulate = 6;
 // variance.h on the steady-state path: the history and surface tests, then a copy.
 constexpr double kVarianceSteady = 2;
+// variance.h's 7x7 estimate (rare_path), one tap: its luminance 5, the edge-stopping weight 50,
+// tap_depth_scale (2 conversions, 2 products, sum, sqrt, division, product) 8, the sums (weight
+// 1, color 3 mul + 3 add, moments 2 mul + 2 add) 11. The centre tap is one of the (2r + 1)^2.
+constexpr double kExactVarianceTap = kLuminance + kExactEdgeWeight + 8 + 11;  // 74
+// Outside the taps: the history and surface tests 2, the centre's luminance 5,
+// inv_depth_tolerance (fwidth: 2 abs, max; the floor's max, product, division) 6, 1 / phi_l 1,
+// the weight's max 1, the five divisions by it 5, spatial_variance (m1^2, difference, max,
+// svh / history, 2 products; variance_of_mean_scale: min, test, division) 9.
+constexpr double kExactVarianceYoung = 2 + 5 + 6 + 1 + 1 + 5 + 9;  // 29
 // remodulate.h: albedo clamp 3, product 3 (plus 3 adds with emission).
 constexpr double kRemodulate = 6;
 // With emission planes, demodulate's subtraction and clamp: 3 + 3.
@@ -127,6 +138,36 @@ constexpr double kFastAtrousTap = 3 + 3 + 1 + 7 + 3 + 3 + 1 + 2 + 1 + 1 + 1 + 1 
 // 6, phi_z and its reciprocal 6, centre luminance 3, centre terms 5, final normalization 6.
 constexpr double kFastAtrousCentre = 20 + 6 + 6 + 3 + 5 + 6;  // 46
 constexpr double kFastAtrousIteration = kGridTaps * kFastAtrousTap + kFastAtrousCentre;
+// The variance's 7x7 estimate, one tap: the a-trous tap's weight (luminance 3, normal dot 3,
+// max 1, squarings 7, the two terms 3 + 3, sum 1, __expf 2, times the normal weight 1, select
+// 1) 25, the depth scale 1 (the constant 1 / distance of an unrolled tap), the sums (weight 1,
+// color 3 FMA, moments 2 FMA) 6.
+constexpr double kFastVarianceTap = 25 + 1 + 6;  // 32
+// Outside the taps: the tests 2, centre luminance 3, the depth tolerance and its reciprocal 6,
+// 1 / phi_l 1, the weight's max and reciprocal 2, five products 5, spatial_variance 9.
+constexpr double kFastVarianceYoung = 2 + 3 + 6 + 1 + 2 + 5 + 9;  // 28
+
+// A surface pixel's variance stage `steady` (the pass-through) mixed with the young-history
+// estimate by f.young_fraction. A young pixel reads its length, the accumulated color 3 (not its
+// variance), the moments 2, depth and normal 4 (planar or packed alike) and depth dx/dy 2 (its
+// neighbours' through the caches), writes the same 4, and computes (2r + 1)^2 taps of `tap`
+// operations and `centre` outside them.
+StageCost with_young_variance(StageCost steady, const SvgfParams& p, const FrameTraits& f,
+                              double tap, double centre) {
+  const double y = f.young_fraction < 0 ? 0 : (f.young_fraction > 1 ? 1 : f.young_fraction);
+  if (y <= 0) return steady;
+  const double side = 2.0 * p.spatial_variance_radius + 1;
+  const double taps = side * side;
+  const double young_read = (1 + 3 + 2 + 4 + 2) * kFloat;
+  steady.read = (1 - y) * steady.read + y * young_read;
+  steady.ops = (1 - y) * steady.ops + y * (centre + taps * tap);
+  steady.taps = y * taps;
+  const std::string young = "young history: R length 1, color 3, moments 2, depth + normal 4, "
+                            "depth dx/dy 2, " + std::to_string(static_cast<int>(taps)) +
+                            " taps; W 4";
+  steady.planes = y >= 1 ? young : steady.planes + "; " + young;
+  return steady;
+}
 
 bool tap_in_range(const SvgfParams& p) {
   return p.feedback_tap >= 0 && p.feedback_tap < p.iterations;
@@ -302,6 +343,7 @@ StageCost exact_cost(Stage stage, const SvgfParams& p, const FrameTraits& f, boo
       c.ops = kVarianceSteady;
       c.planes = packed ? "R length 1, accumulated 4 (background: + packed guides 4); W packed 4"
                         : "R length 1, accumulated 4 (background: + depth 1); W color + variance 4";
+      if (surface) c = with_young_variance(c, p, f, kExactVarianceTap, kExactVarianceYoung);
       break;
     case Stage::Atrous:
       // Per iteration: color + variance 4, depth, depth dx/dy, normal 3 (10 read; background
@@ -361,6 +403,7 @@ StageCost fast_cost(Stage stage, const SvgfParams& p, const FrameTraits& f, bool
       c.written = 4 * kFloat;                         // packed color + variance
       c.ops = kVarianceSteady;
       c.planes = "R length 1, accumulated 4 (background: + packed guides 4); W packed 4";
+      if (surface) c = with_young_variance(c, p, f, kFastVarianceTap, kFastVarianceYoung);
       break;
     case Stage::Atrous:
       if (p.iterations <= 0) break;

@@ -77,6 +77,10 @@ struct FrameTraits {
   bool gradient_samples = false;  // the `gradient` group: --antilag gradient runs its stages
   bool split = false;             // SVGF filters direct and indirect apart (split_sum runs)
   double surface_fraction = 1.0;  // the share of pixels with a surface
+  // The share of surface pixels whose history is younger than spatial_variance_history, where
+  // the variance stage takes its 7x7 estimate instead of passing the temporal variance through
+  // (disocclusions, a camera's motion: 10 to 18% at 720p camera-pan). 0: the steady state.
+  double young_fraction = 0.0;
   int width = 0, height = 0;      // the stratum image's share of pixels; 0: a ninth
   // Exact mode over packed pixels, as the CUDA engine runs it (methods/svgf/flavors.h:
   // SvgfExactPacked): the demodulation packs the guides, the filter reads packed pixels.
@@ -90,7 +94,9 @@ struct FrameTraits {
 // iterations. `f.emission`: the frames carry the optional emission planes, which demodulate
 // subtracts and remodulate adds back. `f.surface_fraction`: the share of pixels with a surface;
 // background pixels (no surface) skip the history, the edge-stopping taps and the planes those
-// read, and cost much less (for the gradient stages: the share of strata with a sample). A stage
+// read, and cost much less (for the gradient stages: the share of strata with a sample).
+// `f.young_fraction`: of the surface pixels, those whose variance is the 7x7 estimate (its
+// (2r + 1)^2 taps, counted in StageCost::taps); the others pass through. A stage
 // the configuration does not run costs nothing: the gradient stages without --antilag gradient
 // or without gradient samples, TAA without --svgf-taa on, split_sum on unsplit frames. The
 // gradient stages work on the stratum image, ceil(w/3) x ceil(h/3) values a plane: their counts

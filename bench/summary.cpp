@@ -627,11 +627,13 @@ std::string summary_markdown(const Results& r, const std::vector<Point>& pts,
       Stage stage;
       Antilag antilag;
       const char* what;
+      bool young = false;
     } optional[] = {{Stage::Gradient, Antilag::Gradient, "--antilag gradient"},
                     {Stage::GradientAtrous, Antilag::Gradient, "--antilag gradient, 3 steps"},
                     {Stage::GradientLambda, Antilag::Gradient, "--antilag gradient"},
                     {reproject, Antilag::Gradient, "--antilag gradient"},
                     {reproject, Antilag::Statistics, "--antilag statistics, radius 2"},
+                    {Stage::Variance, defaults.antilag, "a young history: the 7x7 estimate", true},
                     {Stage::SplitSum, Antilag::Off, "split frames"},
                     {Stage::Taa, Antilag::Off, "--svgf-taa on"}};
     for (const auto& o : optional) {
@@ -644,6 +646,7 @@ std::string summary_markdown(const Results& r, const std::vector<Point>& pts,
       f.split = true;
       f.width = 1920;
       f.height = 1080;
+      f.young_fraction = o.young ? 1.0 : 0.0;
       f.surface_fraction = 1.0;
       const StageCost a = stage_cost(mode, o.stage, p, f);
       f.surface_fraction = 0.0;

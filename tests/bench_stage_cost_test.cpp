@@ -375,6 +375,44 @@ TEST_CASE("stage cost: the variance estimate's planes are the kernel's", "[bench
   });
 }
 
+TEST_CASE("stage cost: the young-history variance estimate's planes are the kernel's",
+          "[bench][stage_cost]") {
+  // A history below spatial_variance_history: the 7x7 estimate, which the model counts for the
+  // young share of the surface (FrameTraits::young_fraction), with its taps.
+  with_power([](const auto& power) {
+    using Power = std::decay_t<decltype(power)>;
+    Rig rig;
+    const VarianceEstimate<SvgfExact, Power> k{guides(rig, "guides", false),
+                                               input_illum_var(rig, "accumulated"),
+                                               rig.input("moment1", 0.5f, 1.5f),
+                                               rig.input("moment2", 2.5f, 3.f),
+                                               rig.input("history", [](int, int) { return 2.f; }),
+                                               output_illum_var(rig, "filtered"),
+                                               SvgfParams()};
+    for (Mode mode : {Mode::Exact, Mode::Fast}) {
+      bench::FrameTraits young = frames(1.0, kW, kH);
+      young.young_fraction = 1.0;
+      const bench::StageCost c = bench::stage_cost(mode, Stage::Variance, SvgfParams(), young);
+      CHECK(c.taps == 49);  // the default radius 3, the centre included
+      require_planes(rig, k, std::string("variance, young history, ") + to_string(mode), true,
+                     {c.read / 4.0, c.written / 4.0});
+    }
+  });
+  // Between the steady state and an all-young surface, linear in the share; background pixels
+  // have no history to be young.
+  const SvgfParams p;
+  const auto cost = [&](double surface, double young) {
+    bench::FrameTraits f = frames(surface, 1280, 720);
+    f.young_fraction = young;
+    return bench::stage_cost(Mode::Exact, Stage::Variance, p, f);
+  };
+  CHECK(cost(1.0, 0.25).ops == Approx(0.75 * cost(1.0, 0.0).ops + 0.25 * cost(1.0, 1.0).ops));
+  CHECK(cost(1.0, 0.25).read == Approx(0.75 * cost(1.0, 0.0).read + 0.25 * cost(1.0, 1.0).read));
+  CHECK(cost(1.0, 1.0).ops > 40 * cost(1.0, 0.0).ops);
+  CHECK(cost(0.0, 1.0).ops == cost(0.0, 0.0).ops);
+  CHECK(cost(0.0, 1.0).taps == 0);
+}
+
 TEST_CASE("stage cost: an a-trous iteration's planes are the kernel's", "[bench][stage_cost]") {
   with_power([](const auto& power) {
     using Power = std::decay_t<decltype(power)>;

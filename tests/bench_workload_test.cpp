@@ -128,3 +128,41 @@ TEST_CASE("a --antilag gradient run times the three gradient stages and says the
   CHECK(e["input"]["gradient_samples"] == false);
   CHECK_FALSE(has(stage_names(e), svgf_stage::kGradient));
 }
+
+TEST_CASE("an SVGF run counts the young histories the variance estimates and costs them",
+          "[bench][workload]") {
+  // Three frames played cyclically: the first timed frame of a run without warm-up has no
+  // history (every surface pixel young); after warm-up frames most histories are old.
+  const FrameSet frames = generate_frames("cornell-moving", 24, 15, 3, "");
+  RunConfig c = run_config("svgf");
+  c.denoiser.threads = 1;
+  const auto variance = [](const json& e) {
+    for (const json& s : e["stages"])
+      if (s["stage"] == svgf_stage::kVariance) return s;
+    FAIL("no variance stage");
+    return json();
+  };
+  TimingOptions first;
+  first.warmup = 0;
+  first.frames = 1;
+  const json e1 = time_run(c, frames, first, Ceilings{10.0, 1e10, "test"});
+  REQUIRE(e1["input"].contains("young_fraction"));
+  CHECK(e1["input"]["young_fraction"]["median"].get<double>() == 1.0);
+  CHECK(variance(e1)["taps_per_px"].get<double>() ==
+        Approx(49.0 * e1["input"]["surface_fraction"].get<double>()));
+
+  TimingOptions later;
+  later.warmup = 8;
+  later.frames = 3;
+  const json e2 = time_run(c, frames, later, Ceilings{10.0, 1e10, "test"});
+  const double young = e2["input"]["young_fraction"]["median"].get<double>();
+  CHECK(young < 0.5);
+  CHECK(e2["input"]["young_fraction"]["min"].get<double>() <= young);
+  CHECK(e2["input"]["young_fraction"]["max"].get<double>() >= young);
+  // The variance's floor counts its taps: more operations with more young pixels.
+  CHECK(variance(e1)["ops_per_px"].get<double>() > variance(e2)["ops_per_px"].get<double>());
+
+  // Another method has no history to count.
+  const json other = time_run(run_config("gaussian"), frames, first, Ceilings{10.0, 1e10, "test"});
+  CHECK_FALSE(other["input"].contains("young_fraction"));
+}
