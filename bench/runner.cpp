@@ -207,7 +207,8 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
     j["input"]["young_fraction"] = {{"median", young_stats.median},
                                     {"mean", young_stats.mean},
                                     {"min", young_stats.min},
-                                    {"max", young_stats.max}};
+                                    {"max", young_stats.max},
+                                    {"frames", young_stats.count}};
   j["warmup"] = t.warmup;
   j["frames"] = timed;
   const OrderStats filter = order_stats(filter_ms), wall = order_stats(wall_ms);

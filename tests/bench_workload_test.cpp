@@ -155,6 +155,8 @@ TEST_CASE("an SVGF run counts the young histories the variance estimates and cos
   later.warmup = 8;
   later.frames = 3;
   const json e2 = time_run(c, frames, later, Ceilings{10.0, 1e10, "test"});
+  // The timed frames only: the warm-up frames' histories are younger still.
+  CHECK(e2["input"]["young_fraction"]["frames"] == e2["frames"]);
   const double young = e2["input"]["young_fraction"]["median"].get<double>();
   CHECK(young < 0.5);
   CHECK(e2["input"]["young_fraction"]["min"].get<double>() <= young);
