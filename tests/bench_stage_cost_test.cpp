@@ -358,19 +358,24 @@ void with_power(const Body& body) {
   SvgfExact::with_normal_power(SvgfParams().phi_normal, body);
 }
 
+// The variance stage's kernel over the rig's planes, every pixel's history `history` frames old.
+template <class Power>
+VarianceEstimate<SvgfExact, Power> variance_kernel(Rig& rig, float history) {
+  return {guides(rig, "guides", false),
+          input_illum_var(rig, "accumulated"),
+          rig.input("moment1", 0.5f, 1.5f),
+          rig.input("moment2", 2.5f, 3.f),
+          rig.input("history", [history](int, int) { return history; }),
+          output_illum_var(rig, "filtered"),
+          SvgfParams()};
+}
+
 TEST_CASE("stage cost: the variance estimate's planes are the kernel's", "[bench][stage_cost]") {
   // Only surface pixels: on a background pixel the history length and depth choose between two
   // branches that both pass the accumulation through, which no change of theirs can show.
   with_power([](const auto& power) {
-    using Power = std::decay_t<decltype(power)>;
     Rig rig;
-    const VarianceEstimate<SvgfExact, Power> k{guides(rig, "guides", false),
-                                               input_illum_var(rig, "accumulated"),
-                                               rig.input("moment1", 0.5f, 1.5f),
-                                               rig.input("moment2", 2.5f, 3.f),
-                                               rig.input("history", [](int, int) { return 10.f; }),
-                                               output_illum_var(rig, "filtered"),
-                                               SvgfParams()};
+    const auto k = variance_kernel<std::decay_t<decltype(power)>>(rig, 10.f);
     require_model(rig, k, Stage::Variance, false, true);
   });
 }
@@ -380,15 +385,8 @@ TEST_CASE("stage cost: the young-history variance estimate's planes are the kern
   // A history below spatial_variance_history: the 7x7 estimate, which the model counts for the
   // young share of the surface (FrameTraits::young_fraction), with its taps.
   with_power([](const auto& power) {
-    using Power = std::decay_t<decltype(power)>;
     Rig rig;
-    const VarianceEstimate<SvgfExact, Power> k{guides(rig, "guides", false),
-                                               input_illum_var(rig, "accumulated"),
-                                               rig.input("moment1", 0.5f, 1.5f),
-                                               rig.input("moment2", 2.5f, 3.f),
-                                               rig.input("history", [](int, int) { return 2.f; }),
-                                               output_illum_var(rig, "filtered"),
-                                               SvgfParams()};
+    const auto k = variance_kernel<std::decay_t<decltype(power)>>(rig, 2.f);
     for (Mode mode : {Mode::Exact, Mode::Fast}) {
       bench::FrameTraits young = frames(1.0, kW, kH);
       young.young_fraction = 1.0;
