@@ -44,7 +44,8 @@ const char* const kRunFooter =
     "operations the stage must move and do, the achieved bandwidth against the measured copy\n"
     "bandwidth, the share of the measured float rate, the floor and, for a filter's taps, the time\n"
     "a tap (other stages: n/a). The input line says whether the frames carry A-SVGF's gradient\n"
-    "samples (rendered frames do).\n"
+    "samples (rendered frames do). An svgf run then plays its frames once more from a reset\n"
+    "history, untimed, to count the young histories (the variance's 7x7 estimate, in its floor).\n"
     "`svgf-bench [options]` without a subcommand is `svgf-bench run [options]`.";
 const char* const kSuiteFooter =
     "cpu (sections sizes, chart, coverage, baselines, wavelet, jbf, bmfr, quality) or gpu\n"
