@@ -31,6 +31,13 @@ json summary_json(const OrderStats& s) {
           {"min", s.min},       {"max", s.max}, {"count", s.count}};
 }
 
+// Whether the history restarts before frame m of the played sequence (distinct frame k): a
+// cut, or a fixture played again from its first frame. Rendered frame sets are cycled without
+// one (their loop is a small jump the reprojection handles as motion).
+bool restarts(const FrameSet& fs, int m, int k) {
+  return m > 0 && (fs.is_cut(k) || (k == 0 && fs.source == "fixture"));
+}
+
 // The share of each timed frame's surface pixels whose history is young (below
 // spatial_variance_history), read back from SVGF's history length after the frame: the pixels
 // the variance stage filters with its 7x7 estimate, which the cost model counts
@@ -140,9 +147,7 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
     }
     const int k = m % n;
     const Frame& f = fs.frames[static_cast<size_t>(k)];
-    // A fixture played again from its first frame is a cut; rendered frame sets are cycled
-    // without one (their loop is a small jump the reprojection handles as motion).
-    if (project && m > 0 && (fs.is_cut(k) || (k == 0 && fs.source == "fixture"))) den->reset();
+    if (project && restarts(fs, m, k)) den->reset();
     const auto t0 = Clock::now();
     if (project)
       den->denoise(f, out);
@@ -170,8 +175,7 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
   if (cuda && project)
     device_path = time_device_path(*den, fs.frames, std::min(t.warmup, 3), timed,
                                    [&](int m, int k) {
-                                     if (fs.is_cut(k) || (k == 0 && fs.source == "fixture"))
-                                       if (m > 0) den->reset();
+                                     if (restarts(fs, m, k)) den->reset();
                                    });
   const auto load_after = load_average();
   const double others = others_share(usage_before, cpu_usage());
@@ -184,7 +188,7 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
     for (int m = 0; m < t.warmup + timed; ++m) {
       const int k = m % n;
       const Frame& f = fs.frames[static_cast<size_t>(k)];
-      if (m > 0 && (fs.is_cut(k) || (k == 0 && fs.source == "fixture"))) den->reset();
+      if (restarts(fs, m, k)) den->reset();
       den->denoise(f, out);
       if (m >= t.warmup) young->add(*den, f);
     }

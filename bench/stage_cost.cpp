@@ -26,6 +26,9 @@ namespace svgf::bench {
 namespace {
 
 constexpr double kFloat = 4.0;
+
+// A share of pixels (surface, young history) kept inside [0, 1].
+double unit_share(double v) { return v < 0 ? 0 : (v > 1 ? 1 : v); }
 // The 5x5 a-trous grid of SVGF and the JBF without its centre.
 constexpr int kGridTaps = 24;
 
@@ -154,7 +157,7 @@ constexpr double kFastVarianceYoung = 2 + 3 + 6 + 1 + 2 + 5 + 9;  // 28
 // operations and `centre` outside them.
 StageCost with_young_variance(StageCost steady, const SvgfParams& p, const FrameTraits& f,
                               double tap, double centre) {
-  const double y = f.young_fraction < 0 ? 0 : (f.young_fraction > 1 ? 1 : f.young_fraction);
+  const double y = unit_share(f.young_fraction);
   if (y <= 0) return steady;
   const double side = 2.0 * p.spatial_variance_radius + 1;
   const double taps = side * side;
@@ -457,7 +460,7 @@ StageCost pixel_cost(Mode mode, Stage stage, const SvgfParams& p, const FrameTra
 
 // A surface pixel's cost `a` and a background pixel's `b`, weighted by the surface fraction.
 StageCost blend(const StageCost& a, const StageCost& b, double surface_fraction) {
-  const double s = surface_fraction < 0 ? 0 : (surface_fraction > 1 ? 1 : surface_fraction);
+  const double s = unit_share(surface_fraction);
   StageCost c = a;
   c.read = s * a.read + (1 - s) * b.read;
   c.written = s * a.written + (1 - s) * b.written;
@@ -609,7 +612,7 @@ StageCost bmfr_regression(Mode mode, const BmfrParams& p, double surface_fractio
                         kBmfrPairs * (fast ? kBmfrRowPairFast : kBmfrRowPairExact);
   const double sample_row = shared + kBmfrRowScale + (noise ? kBmfrRowNoise : 0);
   const double other_row = shared + 1;
-  const double s = surface_fraction < 0 ? 0 : (surface_fraction > 1 ? 1 : surface_fraction);
+  const double s = unit_share(surface_fraction);
   StageCost c;
   c.read = rows * kBmfrRowPlanes * kFloat;
   c.written = blocks * BmfrBlockData::kFloats * kFloat;
