@@ -501,7 +501,7 @@ constexpr double kJbfFastCentre = 1 + 3 + 4;
 // --- the wavelet filter (methods/wavelet/atrous.h) ----------------------------------------------
 // One tap, exact mode: depth term |Z_p - Z_q| / sigma 3, luma term 3, normal_cosine (dot 5,
 // saturate 2) 7, the normal power's squarings m (log2 sigma_N; another sigma_N is det_pow, one
-// special function), the two max 2, exp_neg_sum ((0 - a) - b 2, det_exp 25) 27, times the normal
+// special function), the two max 2, exp_neg_sum ((-a) - b 2, det_exp 25) 27, times the normal
 // weight 1, positive_part 2, times the binomial product 2 (each weight of the 7 and 9 taps
 // kernels is a division too: + 2), accumulation 7.
 constexpr double kWaveletExactTap = 3 + 3 + 7 + 2 + 2 + kDetExp + 1 + 2 + 2 + 7;  // 54 + m

@@ -35,10 +35,13 @@ struct ExactArith {
   SVGF_HD static float saturate(float a) { return min_f(K::of(1.f), max_f(K::of(0.f), a)); }
   template <class K = LiteralConstant>
   SVGF_HD static float exp_nonpositive(float x) { return det_exp_nonpositive<K>(x); }
-  // exp(-(a + b)) for a, b >= 0, evaluated as exp((0 - a) - b).
+  // exp(-(a + b)) for a, b >= 0, evaluated as exp((-a) - b). It was exp((0 - a) - b): the two
+  // differ only in the sign of a zero argument (a = b = +0), whose exp is 1 either way, so the
+  // bits are the same (tests/det_math_test.cpp), and on the GPU the negation is an operand's
+  // modifier, one add a tap fewer.
   template <class K = LiteralConstant>
   SVGF_HD static float exp_neg_sum(float a, float b) {
-    return det_exp_nonpositive<K>((0.f - a) - b);
+    return det_exp_nonpositive<K>(-a - b);
   }
   SVGF_HD static float pow(float x, float y) { return det_pow(x, y); }
   SVGF_HD static float dot(Vec3 a, Vec3 b) { return svgf::dot(a, b); }
@@ -70,18 +73,36 @@ struct ExactArith {
     return inv_phi_z * (1.f / sqrtf(fx * fx + fy * fy));
   }
   // The same in a fully unrolled 5x5 tap loop (dx, dy known at compile time), in two parts:
-  // once per pixel, then per tap. For a power-of-two step (every a-trous step) the scale above
-  // is exactly inv_phi_z * ((1 / sqrt(dx^2 + dy^2)) * (1 / step)): the step multiplies the sum
-  // by a power of four, the root by a power of two and the reciprocal by its inverse, and IEEE
-  // rounding commutes with such scalings (no overflow or underflow at these sizes). Constant
-  // dx, dy make the first factor a compile-time constant, so a tap costs one multiply instead
-  // of an IEEE square root and division (tests/det_math_test.cpp checks the bits for every tap
-  // and step). Other steps keep the full expression.
-  SVGF_HD static float pixel_depth_scale(float inv_phi_z, int) { return inv_phi_z; }
-  SVGF_HD static float tap_depth_scale_unrolled(float pixel_scale, int dx, int dy, int step) {
-    if ((step & (step - 1)) != 0) return tap_depth_scale(pixel_scale, dx, dy, step);
-    const float inv_distance = 1.f / sqrtf(static_cast<float>(dx * dx + dy * dy));
-    return pixel_scale * (inv_distance * (1.f / static_cast<float>(step)));
+  // once per pixel (with_depth_scale picks the scale's form), then per tap (its tap(dx, dy)).
+  // For a power-of-two step (every a-trous step) the scale above is exactly
+  // inv_phi_z * ((1 / sqrt(dx^2 + dy^2)) * (1 / step)): the step multiplies the sum by a power
+  // of four, the root by a power of two and the reciprocal by its inverse, and IEEE rounding
+  // commutes with such scalings (no overflow or underflow at these sizes). Constant dx, dy make
+  // the first factor a compile-time constant and 1 / step is the pixel's, so a tap costs two
+  // multiplies instead of an IEEE square root and division (tests/det_math_test.cpp checks the
+  // bits for every tap and step). Other steps keep the full expression.
+  struct PowerOfTwoStepScale {
+    float inv_phi_z;
+    float inv_step;  // 1 / step, IEEE
+    SVGF_HD float tap(int dx, int dy) const {
+      const float inv_distance = 1.f / sqrtf(static_cast<float>(dx * dx + dy * dy));
+      return inv_phi_z * (inv_distance * inv_step);
+    }
+  };
+  struct AnyStepScale {
+    float inv_phi_z;
+    int step;
+    SVGF_HD float tap(int dx, int dy) const { return tap_depth_scale(inv_phi_z, dx, dy, step); }
+  };
+  // body(scale) with the pixel's scale; the step's test and its reciprocal once a pixel, not
+  // once a tap (on the GPU each tap paid them, about 13 of its 88 instructions: nvcc did not
+  // hoist the IEEE reciprocal out of the tap's branch).
+  template <class Body>
+  SVGF_HD static void with_depth_scale(float inv_phi_z, int step, const Body& body) {
+    if ((step & (step - 1)) == 0)
+      body(PowerOfTwoStepScale{inv_phi_z, 1.f / static_cast<float>(step)});
+    else
+      body(AnyStepScale{inv_phi_z, step});
   }
 };
 
@@ -176,14 +197,18 @@ struct FastArith {
            rsqrtf(static_cast<float>(dx * dx + dy * dy));
   }
   // In an unrolled 5x5 loop: inv_phi_z / step once per pixel, then one multiply by a constant
-  // per tap.
-  __device__ __forceinline__ static float pixel_depth_scale(float inv_phi_z, int step) {
-    return inv_phi_z * __fdividef(1.f, static_cast<float>(step));
-  }
-  __device__ __forceinline__ static float tap_depth_scale_unrolled(float pixel_scale, int dx,
-                                                                   int dy, int) {
-    const float c = inv_distance_small(dx, dy);
-    return pixel_scale * (c >= 0.f ? c : __int_as_float(0x7f800000));  // centre: Inf
+  // per tap (ExactArith::with_depth_scale's form).
+  struct PixelDepthScale {
+    float per_step;  // inv_phi_z / step
+    __device__ __forceinline__ float tap(int dx, int dy) const {
+      const float c = inv_distance_small(dx, dy);
+      return per_step * (c >= 0.f ? c : __int_as_float(0x7f800000));  // centre: Inf
+    }
+  };
+  template <class Body>
+  __device__ __forceinline__ static void with_depth_scale(float inv_phi_z, int step,
+                                                          const Body& body) {
+    body(PixelDepthScale{inv_phi_z * __fdividef(1.f, static_cast<float>(step))});
   }
 };
 #endif

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
+#include <vector>
 
 #include <catch2/catch.hpp>
 
@@ -288,21 +290,47 @@ TEST_CASE("abs_before_clamp then max(., 0) gives abs's bits", "[det_math]") {
   REQUIRE(differing == 0);
 }
 
-// The unrolled a-trous taps scale 1 / phi_z by a factored tap distance (ExactArith::
-// tap_depth_scale_unrolled): for every tap of the 5x5 footprint, every power-of-two step up to
-// 2^12 and 1 / phi_z across the floats (signed zeros, subnormals, Inf, NaN), it must give the
-// full expression's bits. A step that is not a power of two takes the full expression.
-TEST_CASE("tap_depth_scale_unrolled gives tap_depth_scale's bits", "[det_math]") {
+// The edge-stopping weights' exp(-(a + b)) (ExactArith::exp_neg_sum) evaluates exp((-a) - b);
+// it must give the bits of exp((0 - a) - b), its form before, for every a, b >= 0 the weights
+// pass (their terms clamped by max(., 0): +0 .. +Inf, and -0 and NaN for good measure).
+TEST_CASE("exp_neg_sum gives the bits of exp((0 - a) - b)", "[det_math]") {
+  std::vector<float> terms = {0.f, -0.f, std::numeric_limits<float>::infinity(),
+                              std::numeric_limits<float>::quiet_NaN(),
+                              std::numeric_limits<float>::denorm_min(), 1e-30f, 103.97f, 200.f};
+  for (uint32_t b = 0; b < 0x7f800000u; b += 0x7f800000u / 4099) terms.push_back(bits_float(b));
   uint64_t differing = 0, n = 0;
+  for (const float a : terms)
+    for (const float b : terms) {
+      ++n;
+      differing += float_bits(ExactArith::exp_neg_sum(a, b)) !=
+                   float_bits(det_exp_nonpositive((0.f - a) - b));
+    }
+  CHECK(n > 16000000u);
+  REQUIRE(differing == 0);
+}
+
+// The unrolled a-trous taps scale 1 / phi_z by a factored tap distance (ExactArith::
+// with_depth_scale, then the scale's tap(dx, dy)): for every tap of the 5x5 footprint, every
+// power-of-two step up to 2^12 and 1 / phi_z across the floats (signed zeros, subnormals, Inf,
+// NaN), it must give the full expression's bits. A step that is not a power of two takes the
+// full expression.
+TEST_CASE("with_depth_scale's taps give tap_depth_scale's bits", "[det_math]") {
+  uint64_t differing = 0, n = 0, factored = 0;
   for (int step : {1, 2, 4, 8, 16, 32, 64, 128, 256, 512, 1024, 2048, 4096, 3, 6, 12})
-    for (int dy = -2; dy <= 2; ++dy)
-      for (int dx = -2; dx <= 2; ++dx)
-        for (uint64_t b = 0; b <= 0xffffffffull; b += 65537) {
-          const float s = bits_float(static_cast<uint32_t>(b));
-          ++n;
-          differing += float_bits(ExactArith::tap_depth_scale_unrolled(s, dx, dy, step)) !=
-                       float_bits(ExactArith::tap_depth_scale(s, dx, dy, step));
-        }
+    for (uint64_t b = 0; b <= 0xffffffffull; b += 65537) {
+      const float s = bits_float(static_cast<uint32_t>(b));
+      ExactArith::with_depth_scale(s, step, [&](const auto& scale) {
+        factored += std::is_same<std::decay_t<decltype(scale)>,
+                                 ExactArith::PowerOfTwoStepScale>::value;
+        for (int dy = -2; dy <= 2; ++dy)
+          for (int dx = -2; dx <= 2; ++dx) {
+            ++n;
+            differing += float_bits(scale.tap(dx, dy)) !=
+                         float_bits(ExactArith::tap_depth_scale(s, dx, dy, step));
+          }
+      });
+    }
   CHECK(n > 20000000u);
+  CHECK(factored == 13u * (0xffffffffull / 65537 + 1));  // the 13 powers of two, every value
   REQUIRE(differing == 0);
 }

@@ -103,12 +103,14 @@ struct AtrousIteration {
     // Pixels whose whole footprint is inside may skip the 24 bounds tests (same sums, same
     // order), where the flavor asks for it.
     const int reach = 2 * step;
-    const float depth_scale = Arith::pixel_depth_scale(inv_phi_z, step);
-    if (Flavor::kSplitInterior && x >= reach && y >= reach && x < guides.width - reach &&
-        y < guides.height - reach)
-      taps<false>(x, y, c, depth_scale, inv_phi_l, normal_power, s);
-    else
-      taps<true>(x, y, c, depth_scale, inv_phi_l, normal_power, s);
+    const bool interior = Flavor::kSplitInterior && x >= reach && y >= reach &&
+                          x < guides.width - reach && y < guides.height - reach;
+    Arith::with_depth_scale(inv_phi_z, step, [&](const auto& depth_scale) {
+      if (interior)
+        taps<false>(x, y, c, depth_scale, inv_phi_l, normal_power, s);
+      else
+        taps<true>(x, y, c, depth_scale, inv_phi_l, normal_power, s);
+    });
     const auto by_weight = Arith::divide_by(s.weight);
     store_with(out, out_inputs, i,
                make_color_var(by_weight(s.color),
@@ -122,10 +124,11 @@ struct AtrousIteration {
     float variance;
   };
 
-  // depth_scale: Arith::pixel_depth_scale of the pixel's 1 / phi_z.
-  template <bool kCheck>
-  SVGF_HD void taps(int x, int y, const EdgeSample& c, float depth_scale, float inv_phi_l,
-                    const Power& normal_power, Sums& s) const {
+  // depth_scale: the pixel's 1 / phi_z in Arith::with_depth_scale's form (tap(dx, dy) scales
+  // it by the tap's distance).
+  template <bool kCheck, class DepthScale>
+  SVGF_HD void taps(int x, int y, const EdgeSample& c, const DepthScale& depth_scale,
+                    float inv_phi_l, const Power& normal_power, Sums& s) const {
 #if defined(__CUDA_ARCH__)
 #pragma unroll
 #endif
@@ -143,7 +146,7 @@ struct AtrousIteration {
         const DepthNormal gq = guides.depth_normal(j);
         const EdgeSample sq{gq.depth, gq.normal, luminance_with<Arith>(q.color)};
         const float k = b3_weight(dx < 0 ? -dx : dx) * b3_weight(dy < 0 ? -dy : dy);
-        const float tap_scale = Arith::tap_depth_scale_unrolled(depth_scale, dx, dy, step);
+        const float tap_scale = depth_scale.tap(dx, dy);
         const float w =
             edge_stopping_weight<Arith>(c, sq, tap_scale, normal_power, inv_phi_l) * k;
         s.weight = s.weight + w;
