@@ -95,8 +95,8 @@ struct ExactArith {
     SVGF_HD float tap(int dx, int dy) const { return tap_depth_scale(inv_phi_z, dx, dy, step); }
   };
   // body(scale) with the pixel's scale; the step's test and its reciprocal once a pixel, not
-  // once a tap (on the GPU each tap paid them, about 13 of its 88 instructions: nvcc did not
-  // hoist the IEEE reciprocal out of the tap's branch).
+  // once a tap (on the GPU each tap paid them, about 13 SASS instructions: nvcc did not hoist
+  // the IEEE reciprocal out of the tap's branch; docs/benchmarks.md has what it saved).
   template <class Body>
   SVGF_HD static void with_depth_scale(float inv_phi_z, int step, const Body& body) {
     if ((step & (step - 1)) == 0)
