@@ -308,6 +308,52 @@ StageCost shared_cost(Stage stage, const SvgfParams& p, const FrameTraits& f, bo
   return c;
 }
 
+// Demodulate + reproject + guide packing in one kernel (fast mode, and CUDA's exact mode:
+// kFusedReprojection in methods/svgf/flavors.h), timed and counted as Demodulate. The
+// illumination comes back from the thread's own write. Background pixels read depth and normal
+// only (to pack them), besides color and albedo.
+StageCost fused_reprojection_cost(const SvgfParams& p, const FrameTraits& f, bool surface) {
+  StageCost c;
+  c.read = (3 + 3 + (f.emission ? 3 : 0) + (surface ? 9 + 5 + 6 : 4)) * kFloat;
+  c.written = (3 + 4 + 2 + 1 + 4) * kFloat;  // + packed guides (depth, normal)
+  c.ops = kDemodulate + (f.emission ? kEmission : 0) + (surface ? kReproject : kReprojectNoHistory);
+  c.planes =
+      "R color 3, albedo 3, emission 3 (if any), guides 9, previous guides 5, history 6 "
+      "(background: depth, normal); W illumination 3, accumulated 4, moments 2, length 1, "
+      "packed guides 4";
+  return plus(c, antilag_extra(p, f, surface, true));
+}
+
+// The a-trous iterations when the feedback copy and the remodulation ride on them (fast mode,
+// and CUDA's exact mode: kFusedOutputs in methods/svgf/flavors.h): the last iteration reads
+// albedo (+ emission) and writes the output 3 instead of a packed pixel 4; the feedback tap's
+// iteration also writes the color history 3.
+StageCost with_fused_outputs(StageCost c, const SvgfParams& p, bool emission) {
+  if (p.iterations <= 0) return c;
+  c.read += (3 + (emission ? 3 : 0)) * kFloat;
+  c.written += (-4 + 3 + (tap_in_range(p) ? 3 : 0)) * kFloat;
+  c.ops += kRemodulate + (emission ? 3 : 0);
+  c.planes += "; last R albedo 3 (+ emission 3), W output 3 (not packed 4); tap W history 3";
+  return c;
+}
+
+// The feedback copy and the remodulation as passes of their own, where nothing else does them:
+// no feedback tap in range (the accumulation's color is copied), no iteration.
+StageCost unfused_output_cost(Stage stage, const SvgfParams& p, bool emission) {
+  StageCost c;
+  if (stage == Stage::Feedback && !tap_in_range(p)) {
+    c.read = 3 * kFloat;
+    c.written = 3 * kFloat;
+    c.planes = "R accumulated color 3; W color history 3";
+  } else if (stage == Stage::Remodulate && p.iterations <= 0) {
+    c.read = (4 + 3 + (emission ? 3 : 0)) * kFloat;
+    c.written = 3 * kFloat;
+    c.ops = kRemodulate + (emission ? 3 : 0);
+    c.planes = "R packed 4, albedo 3, emission 3 (if any); W output 3";
+  }
+  return c;
+}
+
 StageCost exact_cost(Stage stage, const SvgfParams& p, const FrameTraits& f, bool surface) {
   const bool emission = f.emission;
   const bool packed = f.packed_exact;
@@ -317,14 +363,14 @@ StageCost exact_cost(Stage stage, const SvgfParams& p, const FrameTraits& f, boo
     case Stage::Sanitize:
       return sanitize_cost(emission);
     case Stage::Demodulate:
-      c.read = (3 + 3 + e + (packed ? 4 : 0)) * kFloat;  // color, albedo, emission, (guides)
-      c.written = (3 + (packed ? 4 : 0)) * kFloat;       // illumination, (packed guides)
+      if (packed) return fused_reprojection_cost(p, f, surface);  // + reproject (CUDA)
+      c.read = (3 + 3 + e) * kFloat;  // color, albedo, emission
+      c.written = 3 * kFloat;         // illumination
       c.ops = kDemodulate + (emission ? kEmission : 0);
-      c.planes = packed ? "R color 3, albedo 3, emission 3 (if any), depth, normal 3; W "
-                          "illumination 3, packed guides 4"
-                        : "R color 3, albedo 3, emission 3 (if any); W illumination 3";
+      c.planes = "R color 3, albedo 3, emission 3 (if any); W illumination 3";
       break;
     case Stage::Reproject:
+      if (packed) break;  // in the demodulation's kernel
       // Surface: this frame's guides: mesh id, depth, depth dx/dy, normal 3, motion 2 (9); the
       // illumination 3; the previous guides at the taps: mesh id, depth, normal 3 (5); the
       // history: color 3, moments 2, length 1 (6). Background: depth and illumination only.
@@ -360,20 +406,21 @@ StageCost exact_cost(Stage stage, const SvgfParams& p, const FrameTraits& f, boo
                           "packed, packed guides); W packed 4"
                         : "per iteration R color + variance 4, depth 1, depth dx/dy 2, normal 3 "
                           "(background: color + variance, depth); W color + variance 4";
+      // Packed (CUDA), the feedback copy and the remodulation ride on the iterations.
+      if (packed) c = with_fused_outputs(c, p, emission);
       break;
     case Stage::Feedback:  // a copy: the tap's output, or the accumulation when none
-      // Packed: the tap's output is read as whole pixels.
-      c.read = (packed && tap_in_range(p) ? 4 : 3) * kFloat;
+      if (packed) return unfused_output_cost(stage, p, emission);
+      c.read = 3 * kFloat;
       c.written = 3 * kFloat;
-      c.planes = packed && tap_in_range(p) ? "R packed 4; W color history 3"
-                                           : "R color 3; W color history 3";
+      c.planes = "R color 3; W color history 3";
       break;
     case Stage::Remodulate:
-      c.read = ((packed ? 4 : 3) + 3 + e) * kFloat;  // filtered illumination, albedo, emission
+      if (packed) return unfused_output_cost(stage, p, emission);
+      c.read = (3 + 3 + e) * kFloat;  // filtered illumination, albedo, emission
       c.written = 3 * kFloat;
       c.ops = kRemodulate + (emission ? 3 : 0);
-      c.planes = packed ? "R packed 4, albedo 3, emission 3 (if any); W output 3"
-                        : "R filtered 3, albedo 3, emission 3 (if any); W output 3";
+      c.planes = "R filtered 3, albedo 3, emission 3 (if any); W output 3";
       break;
     default:
       break;
@@ -383,24 +430,12 @@ StageCost exact_cost(Stage stage, const SvgfParams& p, const FrameTraits& f, boo
 
 StageCost fast_cost(Stage stage, const SvgfParams& p, const FrameTraits& f, bool surface) {
   const bool emission = f.emission;
-  const double e = emission ? 3 : 0;
   StageCost c;
   switch (stage) {
     case Stage::Sanitize:
       return sanitize_cost(emission);
-    case Stage::Demodulate:  // demodulate + reproject + guide packing, one kernel
-      // The illumination comes back from the thread's own write. Background pixels read depth
-      // and normal only (to pack them), besides color and albedo.
-      c.read = (3 + 3 + e + (surface ? 9 + 5 + 6 : 4)) * kFloat;
-      c.written = (3 + 4 + 2 + 1 + 4) * kFloat;  // + packed guides (depth, normal)
-      c.ops =
-          kDemodulate + (emission ? kEmission : 0) + (surface ? kReproject : kReprojectNoHistory);
-      c.planes =
-          "R color 3, albedo 3, emission 3 (if any), guides 9, previous guides 5, history 6 "
-          "(background: depth, normal); W illumination 3, accumulated 4, moments 2, length 1, "
-          "packed guides 4";
-      c = plus(c, antilag_extra(p, f, surface, true));
-      break;
+    case Stage::Demodulate:
+      return fused_reprojection_cost(p, f, surface);
     case Stage::Variance:  // the same functor as exact mode's: guides on background only
       c.read = (1 + 4 + (surface ? 0 : 4)) * kFloat;  // length, accumulated, (packed guides)
       c.written = 4 * kFloat;                         // packed color + variance
@@ -411,32 +446,20 @@ StageCost fast_cost(Stage stage, const SvgfParams& p, const FrameTraits& f, bool
     case Stage::Atrous:
       if (p.iterations <= 0) break;
       // Per iteration: packed color + variance 4, packed guides 4, depth dx/dy 2 read; packed
-      // 4 written except by the last, which remodulates (albedo 3 in, output 3 out); the
-      // feedback tap's iteration also writes the color history 3.
+      // 4 written, with the outputs fused into the last and the tap's iteration.
       // Background pixels pass through: packed and packed guides only.
-      c.read = (p.iterations * (surface ? 10 : 8) + 3 + e) * kFloat;
-      c.written = ((p.iterations - 1) * 4 + 3 + (tap_in_range(p) ? 3 : 0)) * kFloat;
-      c.ops =
-          (surface ? p.iterations * kFastAtrousIteration : 0) + kRemodulate + (emission ? 3 : 0);
+      c.read = p.iterations * (surface ? 10 : 8) * kFloat;
+      c.written = p.iterations * 4 * kFloat;
+      c.ops = surface ? p.iterations * kFastAtrousIteration : 0;
       c.taps = surface ? p.iterations * kGridTaps : 0;
       c.planes =
           "per iteration R packed 4, packed guides 4, depth dx/dy 2 (background: packed, "
-          "packed guides); W packed 4 (not the last); last R albedo 3 (+ emission 3), W output "
-          "3; tap W history 3";
+          "packed guides); W packed 4";
+      c = with_fused_outputs(c, p, emission);
       break;
-    case Stage::Feedback:
-      if (tap_in_range(p)) break;  // rides on the tap's iteration
-      c.read = 3 * kFloat;
-      c.written = 3 * kFloat;
-      c.planes = "R accumulated color 3; W color history 3";
-      break;
-    case Stage::Remodulate:
-      if (p.iterations > 0) break;  // rides on the last iteration
-      c.read = (4 + 3 + e) * kFloat;
-      c.written = 3 * kFloat;
-      c.ops = kRemodulate + (emission ? 3 : 0);
-      c.planes = "R packed 4, albedo 3, emission 3 (if any); W output 3";
-      break;
+    case Stage::Feedback:    // rides on the tap's iteration, if any
+    case Stage::Remodulate:  // rides on the last iteration, if any
+      return unfused_output_cost(stage, p, emission);
     default:
       break;
   }

@@ -83,15 +83,16 @@ struct FrameTraits {
   double young_fraction = 0.0;
   int width = 0, height = 0;      // the stratum image's share of pixels; 0: a ninth
   // Exact mode over packed pixels, as the CUDA engine runs it (methods/svgf/flavors.h:
-  // SvgfExactPacked): the demodulation packs the guides, the filter reads packed pixels.
+  // SvgfExactPacked): demodulate + reproject + guide packing in one kernel, the filter reads
+  // packed pixels, the feedback copy and the remodulation ride on the a-trous iterations.
   bool packed_exact = false;
 };
 
 // Cost of `stage` in one frame, all a-trous iterations together for Stage::Atrous and
 // Stage::GradientAtrous. Upload and Download give the bytes crossing the host link (their ops are
-// 0). Fast mode (CUDA) fuses stages: demodulate + reproject run as one kernel, timed and counted
-// as Demodulate (Reproject is then empty); feedback and remodulate ride on the a-trous
-// iterations. `f.emission`: the frames carry the optional emission planes, which demodulate
+// 0). Fast mode and CUDA's exact mode (f.packed_exact) fuse stages: demodulate + reproject run
+// as one kernel, timed and counted as Demodulate (Reproject is then empty); feedback and
+// remodulate ride on the a-trous iterations. `f.emission`: the frames carry the optional emission planes, which demodulate
 // subtracts and remodulate adds back. `f.surface_fraction`: the share of pixels with a surface;
 // background pixels (no surface) skip the history, the edge-stopping taps and the planes those
 // read, and cost much less (for the gradient stages: the share of strata with a sample).

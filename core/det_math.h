@@ -46,9 +46,22 @@ SVGF_HD float det_scale_pow2_nonpositive(float y, float k) {
   return (y * bits_float(field)) * 5.42101086242752217e-20f;  // 2^-64
 }
 
+// c - a * b for a product a * b that is exact in float (the caller proves it): on the GPU one
+// fused multiply-add, whose one rounding is then the rounding of the separate difference, so
+// the bits are the CPU's (tests/det_math_test.cpp). Not a contraction: a product that rounds
+// must not come here.
+SVGF_HD float sub_exact_product(float c, float a, float b) {
+#if defined(__CUDA_ARCH__)
+  return __fmaf_rn(-a, b, c);
+#else
+  return c - a * b;
+#endif
+}
+
 // e^x = y 2^k for x clamped to [-104, 89]: Cody-Waite reduction x = k ln2 + r with |r| <= ln2/2
-// (ln2 split so k*ln2_hi is exact for |k| <= 255) and the Cephes expf minimax polynomial for
-// y = e^r. Straight-line code, so the CPU loops vectorize it.
+// (ln2 split so k*ln2_hi is exact for |k| <= 255: ln2_hi has 15 significant bits, k 8, so the
+// GPU takes x - k*ln2_hi as one FMA) and the Cephes expf minimax polynomial for y = e^r.
+// Straight-line code, so the CPU loops vectorize it.
 struct ExpReduced {
   float y;  // e^r, in [0.7, 1.42]
   float k;  // integral, |k| <= 150
@@ -57,7 +70,7 @@ SVGF_HD ExpReduced det_exp_reduce(float xc) {
   // k = floor(x log2e + 1/2): floorf is one rounding instruction (roundps, vrndscaleps: the CPU
   // kernels are built with -fno-trapping-math; FRND on the GPU).
   const float k = floorf(xc * 1.44269504088896341f + 0.5f);
-  const float r = (xc - k * 0.693145751953125f) - k * 1.428606765330187e-06f;
+  const float r = sub_exact_product(xc, k, 0.693145751953125f) - k * 1.428606765330187e-06f;
   const float r2 = r * r;
   float p = 1.9875691500e-4f;
   p = p * r + 1.3981999507e-3f;

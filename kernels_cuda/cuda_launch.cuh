@@ -30,6 +30,22 @@ __global__ void pixel_kernel(const K k, int width, int height) {
   if (x < width && y < height) k(x, y);
 }
 
+// For kernels that ask for a register cap (K::kMaxRegisters > 0): more threads resident an SM
+// where registers limit them, at the price of what the compiler then spills (the exact a-trous,
+// methods/svgf/flavors.h). The same code, so the same bits.
+template <class K, class = void>
+struct RegisterCap : std::integral_constant<int, 0> {};
+template <class K>
+struct RegisterCap<K, std::void_t<decltype(K::kMaxRegisters)>>
+    : std::integral_constant<int, K::kMaxRegisters> {};
+
+template <class K, int kRegisters>
+__global__ void __maxnreg__(kRegisters) capped_pixel_kernel(const K k, int width, int height) {
+  const int x = device::pixel_x();
+  const int y = device::pixel_y();
+  if (x < width && y < height) k(x, y);
+}
+
 // For kernels with a rare path (core/rare_path.h): every thread tries the common path; the
 // block's rare pixels are listed in shared memory (rare_pixels: one int per thread of the block)
 // and taken by the block's first threads, so the expensive path fills whole warps.
@@ -97,6 +113,8 @@ void launch(const K& k, int width, int height, LaunchShape shape, cudaStream_t s
   if constexpr (HasRarePath<K>::value) {
     const size_t list_bytes = sizeof(int) * g.block.x * g.block.y;
     compacting_pixel_kernel<K><<<g.grid, g.block, list_bytes, stream>>>(k, width, height);
+  } else if constexpr (RegisterCap<K>::value > 0) {
+    capped_pixel_kernel<K, RegisterCap<K>::value><<<g.grid, g.block, 0, stream>>>(k, width, height);
   } else {
     pixel_kernel<K><<<g.grid, g.block, 0, stream>>>(k, width, height);
   }

@@ -13,6 +13,7 @@
 #include <deque>
 #include <functional>
 #include <string>
+#include <tuple>
 #include <type_traits>
 #include <vector>
 
@@ -641,9 +642,10 @@ TEST_CASE("stage cost: split_sum's and TAA's planes are the kernel's", "[bench][
 
 TEST_CASE("stage cost: CUDA's exact mode over packed pixels differs where the packing moves bytes",
           "[bench][stage_cost]") {
-  // methods/svgf/flavors.h, SvgfExactPacked: the demodulation also packs depth + normal; the
-  // filter reads 16-byte pixels (the same floats on a surface); the feedback copy and the
-  // remodulation read a whole packed pixel for its color. Operations do not change.
+  // methods/svgf/flavors.h, SvgfExactPacked: the demodulation also packs depth + normal, in
+  // one kernel with the reprojection; the filter reads 16-byte pixels (the same floats on a
+  // surface); the feedback copy and the remodulation ride on the a-trous iterations. Operations
+  // do not change, only where the fused passes' are counted.
   const SvgfParams p;
   const auto cost = [&](Stage s, double surface, bool packed, const SvgfParams& params) {
     bench::FrameTraits f = frames(surface, 1920, 1080);
@@ -656,24 +658,58 @@ TEST_CASE("stage cost: CUDA's exact mode over packed pixels differs where the pa
     CHECK(a.ops == b.ops);
     return std::make_pair(a.read - b.read, a.written - b.written);
   };
+  // Demodulate + reproject + guide packing in one kernel (kFusedReprojection): fast mode's, the
+  // same functors, counted under Demodulate; the operations of the two passes.
   for (double surface : {0.0, 1.0}) {
-    CHECK(delta(Stage::Demodulate, surface) == std::make_pair(16.0, 16.0));
-    CHECK(delta(Stage::Reproject, surface) == std::make_pair(0.0, 0.0));
-    CHECK(delta(Stage::Remodulate, surface) == std::make_pair(4.0, 0.0));
+    bench::FrameTraits packed = frames(surface, 1920, 1080);
+    packed.emission = true;
+    packed.packed_exact = true;
+    const bench::StageCost fused = bench::stage_cost(Mode::Exact, Stage::Demodulate, p, packed);
+    const bench::StageCost fast = bench::stage_cost(Mode::Fast, Stage::Demodulate, p, packed);
+    CHECK(fused.read == fast.read);
+    CHECK(fused.written == fast.written);
+    CHECK(fused.ops == fast.ops);
+    CHECK(cost(Stage::Reproject, surface, true, p).bytes() == 0);
+    CHECK(fused.ops == cost(Stage::Demodulate, surface, false, p).ops +
+                           cost(Stage::Reproject, surface, false, p).ops);
+    // 4 floats more written: the packed guides.
+    CHECK(fused.written - cost(Stage::Demodulate, surface, false, p).written -
+              cost(Stage::Reproject, surface, false, p).written == 4 * 4);
   }
-  SvgfParams tap = p;  // the tap's filtered color is copied out of a packed pixel
-  tap.feedback_tap = 1;
-  CHECK(delta(Stage::Feedback, 1.0, tap) == std::make_pair(4.0, 0.0));
-  CHECK(delta(Stage::Atrous, 1.0) == std::make_pair(0.0, 0.0));
-  CHECK(delta(Stage::Atrous, 0.0) == std::make_pair(p.iterations * 3 * 4.0, 0.0));
   CHECK(delta(Stage::Variance, 1.0) == std::make_pair(0.0, 0.0));
   CHECK(delta(Stage::Variance, 0.0) == std::make_pair(12.0, 0.0));
-  SvgfParams no_tap = p;  // the accumulation's color planes are copied as before
-  no_tap.feedback_tap = -1;  // (the defaults' own)
-  CHECK(delta(Stage::Feedback, 1.0, no_tap) == std::make_pair(0.0, 0.0));
-  // Fast mode has its own model, which the flag does not touch.
+  // The a-trous with the feedback copy and the remodulation, against three passes: the tap's
+  // filtered color and the last filtered color are not read back (2 x 3 floats), the last
+  // iteration writes the output instead of a packed pixel (4 floats fewer). Without a tap in
+  // range the accumulation's color is copied by its own pass in both.
+  SvgfParams tap = p;
+  tap.feedback_tap = 1;
+  SvgfParams no_tap = p;
+  no_tap.feedback_tap = -1;
+  for (const auto& [params, read, written] :
+       {std::make_tuple(tap, -6.0, -4.0), std::make_tuple(no_tap, -3.0, -4.0)}) {
+    REQUIRE(params.iterations > 1);
+    bench::StageCost a, b;  // packed, planes
+    for (Stage s : {Stage::Atrous, Stage::Feedback, Stage::Remodulate})
+      for (auto [sum, packed] : {std::make_pair(&a, true), std::make_pair(&b, false)}) {
+        const bench::StageCost c = cost(s, 1.0, packed, params);
+        sum->read += c.read;
+        sum->written += c.written;
+        sum->ops += c.ops;
+      }
+    CHECK(a.ops == b.ops);
+    CHECK(a.read - b.read == read * 4);
+    CHECK(a.written - b.written == written * 4);
+    CHECK(cost(Stage::Remodulate, 1.0, true, params).bytes() == 0);
+  }
+  CHECK(cost(Stage::Feedback, 1.0, true, tap).bytes() == 0);
+  CHECK(cost(Stage::Feedback, 1.0, true, no_tap).bytes() == 6 * 4);
+  // The same fused a-trous as fast mode's, but for its operations.
   bench::FrameTraits f = frames(1.0, 1920, 1080), g = f;
   g.packed_exact = true;
+  CHECK(bench::stage_cost(Mode::Exact, Stage::Atrous, p, g).bytes() ==
+        bench::stage_cost(Mode::Fast, Stage::Atrous, p, f).bytes());
+  // Fast mode has its own model, which the flag does not touch.
   CHECK(bench::frame_cost(Mode::Fast, p, f).read == bench::frame_cost(Mode::Fast, p, g).read);
 }
 

@@ -215,6 +215,31 @@ TEST_CASE("det_scale_pow2_nonpositive gives det_scale_pow2's bits for every k <=
   REQUIRE(det_scale_pow2_nonpositive(1.4f, 0.f) == 1.4f);
 }
 
+// The GPU evaluates the reduction's x - k ln2_hi as one FMA (sub_exact_product): the same bits
+// only because k ln2_hi is exact for every k the reduction makes (|k| <= 150; the claim holds to
+// 255). Here the product's exactness for every such k, and the fused form (std::fma, one
+// rounding) against the separate one at the k of every 61st float in [-104, 89].
+TEST_CASE("x - k ln2_hi in one FMA gives the separate form's bits", "[det_math]") {
+  const float ln2_hi = 0.693145751953125f;
+  for (int k = -255; k <= 255; ++k) {
+    const float kf = static_cast<float>(k);
+    REQUIRE(static_cast<double>(kf * ln2_hi) ==
+            static_cast<double>(kf) * static_cast<double>(ln2_hi));
+  }
+  uint64_t differing = 0, n = 0;
+  for (const float sign : {1.f, -1.f}) {
+    const uint32_t end = float_bits(sign > 0 ? 89.f : 104.f);
+    for (uint32_t b = 0; b <= end; b += 61, ++n) {
+      const float x = sign * bits_float(b);
+      const float k = std::floor(x * 1.44269504088896341f + 0.5f);
+      differing += float_bits(std::fma(-k, ln2_hi, x)) != float_bits(x - k * ln2_hi);
+      differing += float_bits(sub_exact_product(x, k, ln2_hi)) != float_bits(x - k * ln2_hi);
+    }
+  }
+  CHECK(n > 30000000u);
+  REQUIRE(differing == 0);
+}
+
 TEST_CASE("det_exp_nonpositive gives det_exp's bits for every x <= 0", "[det_math]") {
   const uint32_t end = float_bits(110.f);
   uint64_t differing = 0, n = 0;

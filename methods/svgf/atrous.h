@@ -69,6 +69,8 @@ template <class Flavor, class Power = NormalPower<typename Flavor::Arith>,
           class Out = typename Flavor::Signal>
 struct AtrousIteration {
   using Arith = typename Flavor::Arith;
+  // The flavor's register cap for a GPU launch (kernels_cuda/cuda_launch.cuh), 0 for none.
+  static constexpr int kMaxRegisters = Flavor::kAtrousMaxRegisters;
   typename Flavor::Guides guides;
   typename Flavor::ConstSignal in;
   Out out;

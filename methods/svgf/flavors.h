@@ -2,8 +2,10 @@
 // How SVGF's functors are evaluated and stored: exact mode (ExactArith over separate float
 // planes on the CPU, over packed Packed4 pixels on CUDA) or fast mode (FastArith over packed
 // pixels, CUDA only). A flavor is a choice of arithmetic and storage over the same functors,
-// never a second copy of a formula; it also says whether the pipeline fuses stages into one
-// launch (methods/svgf/pipeline.h).
+// never a second copy of a formula; it also says which stages the pipeline fuses into one
+// launch (methods/svgf/pipeline.h): kFusedReprojection (demodulate + reproject + guide packing),
+// kFusedOutputs (the feedback copy and the remodulation done by the a-trous iterations whose
+// results they are).
 #include "core/arith.h"
 #include "core/views.h"
 #include "methods/svgf/edge_stopping.h"
@@ -26,12 +28,16 @@ struct SvgfExact {
   using Signal = IllumVarView;          // color + variance, four planes
   using ConstSignal = ConstIllumVarView;
   // Every stage is its own pass (so each can be timed, read back and compared alone).
-  static constexpr bool kFused = false;
+  static constexpr bool kFusedReprojection = false;
+  static constexpr bool kFusedOutputs = false;
   // The a-trous and spatial-variance taps as one loop with bounds tests (a second, test-free
   // copy for interior pixels made the exact kernels over planes larger and slower: the a-trous
   // on the H100, the variance on the H200).
   static constexpr bool kSplitInterior = false;
   static constexpr bool kSplitInteriorVariance = false;
+  static constexpr bool kUnrollVariance = false;
+  // No register cap on the a-trous (a CUDA launch hint; 0: the compiler's choice).
+  static constexpr int kAtrousMaxRegisters = 0;
   template <class Body>
   static void with_normal_power(float phi_normal, const Body& body) {
     with_normal_power_of<Arith>(phi_normal, body);
@@ -49,13 +55,24 @@ struct SvgfExactPacked {
   using Guides = PackedGuides;
   using Signal = PackedIllumVar<Packed4>;
   using ConstSignal = PackedIllumVar<const Packed4>;
-  // Each stage its own pass, as SvgfExact; the demodulation also packs the guides.
-  static constexpr bool kFused = false;
+  // Fused as in fast mode (the same stores of the same values: the same bits): demodulate +
+  // reproject + guide packing in one launch, the feedback copy and the remodulation in the
+  // a-trous iterations that produce them. H200, 1080p camera-pan: demodulate + reproject
+  // 0.129 -> 0.118 ms; the remodulation's own pass took 0.031 ms, in the last iteration 0.018
+  // (docs/benchmarks.md).
+  static constexpr bool kFusedReprojection = true;
+  static constexpr bool kFusedOutputs = true;
   // The a-trous's interior pixels skip the 24 bounds tests (same taps, same order). Packed, the
   // test-free copy pays: H200, 1080p exact a-trous 0.806 -> 0.800 ms at camera-pan, 0.497 ->
-  // 0.469 at cornell-moving. The variance's did not (0.136 -> 0.148 ms at camera-pan).
+  // 0.469 at cornell-moving. The variance's did not (0.136 -> 0.148 ms at camera-pan); its
+  // default 7x7 unrolled with the bounds tests did (0.120 -> 0.113 ms).
   static constexpr bool kSplitInterior = true;
   static constexpr bool kSplitInteriorVariance = false;
+  static constexpr bool kUnrollVariance = true;
+  // The a-trous capped at 64 registers (it took 72: 3 blocks of 256 threads an SM, 4 now, at
+  // the price of 32 to 48 bytes spilled): 0.658 -> 0.629 ms at 1080p camera-pan on the H200;
+  // capped at 56 or 48 it was slower (0.650, 0.658).
+  static constexpr int kAtrousMaxRegisters = 64;
   template <class Body>
   static void with_normal_power(float phi_normal, const Body& body) {
     with_normal_power_of<Arith>(phi_normal, body);
@@ -70,11 +87,14 @@ struct SvgfFast {
   using ConstSignal = PackedIllumVar<const Packed4>;
   // Demodulate + reproject + guide packing in one launch; the feedback copy and the
   // remodulation ride on the a-trous iterations that produce them.
-  static constexpr bool kFused = true;
+  static constexpr bool kFusedReprojection = true;
+  static constexpr bool kFusedOutputs = true;
   // Interior pixels (footprint inside the image) skip the bounds tests: the a-trous's 24
   // (kSplitInterior), the variance's 48 (its default 7x7 unrolled; kSplitInteriorVariance).
   static constexpr bool kSplitInterior = true;
   static constexpr bool kSplitInteriorVariance = true;
+  static constexpr bool kUnrollVariance = true;
+  static constexpr int kAtrousMaxRegisters = 0;
   template <class Body>
   static void with_normal_power(float phi_normal, const Body& body) {
     with_normal_power_of<Arith>(phi_normal, body);

@@ -238,7 +238,7 @@ void run_svgf_signal(Engine& engine, const SvgfFrameBuffers& b, const SvgfParams
   //    Fused, the same thread reprojects the illumination it just wrote, and packs the guides.
   //    Unfused with packed guides, the demodulation packs them.
   const PackGuidesKernel pack{b.guides, reinterpret_cast<Packed4*>(b.packed_guides)};
-  if constexpr (Flavor::kFused) {
+  if constexpr (Flavor::kFusedReprojection) {
     engine.run(stage::kDemodulate,
                then(demodulate_kernel_for(b, p),
                     then(reproject_kernel_for(b, p, has_history, lambda), pack)),
@@ -272,7 +272,7 @@ void run_svgf_signal(Engine& engine, const SvgfFrameBuffers& b, const SvgfParams
         engine.run(stage::kAtrous, AtrousIteration<Flavor, Power, Out>{guides, in, out, step, p},
                    w, h);
       };
-      if constexpr (Flavor::kFused) {
+      if constexpr (Flavor::kFusedOutputs) {
         // The feedback copy and (last iteration) the remodulation happen as the result is
         // stored; the last iteration's filtered buffer is never written.
         const bool last = it + 1 == p.iterations;
@@ -293,7 +293,7 @@ void run_svgf_signal(Engine& engine, const SvgfFrameBuffers& b, const SvgfParams
 
     // 5. filtered illumination * albedo + emission -> output (fused: done by the last
     //    iteration, unless there was none).
-    if (!Flavor::kFused || p.iterations <= 0)
+    if (!Flavor::kFusedOutputs || p.iterations <= 0)
       engine.run(stage::kRemodulate,
                  ForwardKernel<ConstSignal, RemodulateSink>{w, signal(current), remodulate}, w,
                  h);

@@ -1,6 +1,6 @@
 #pragma once
 // Where an a-trous iteration's result can go besides the next iteration's buffer, for the fused
-// pipeline (fast mode): the remodulated output (RemodulateSink, methods/svgf/remodulate.h), and a
+// pipeline (CUDA, both modes): the remodulated output (RemodulateSink, methods/svgf/remodulate.h), and a
 // copy into the color history.
 #include "core/sink.h"
 #include "core/views.h"

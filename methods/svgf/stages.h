@@ -11,12 +11,12 @@ namespace svgf::svgf_stage {
 inline constexpr const char* kGradient = "gradient";                // samples per stratum
 inline constexpr const char* kGradientAtrous = "gradient_atrous";   // all iterations together
 inline constexpr const char* kGradientLambda = "gradient_lambda";
-inline constexpr const char* kDemodulate = "demodulate";  // fast mode: + reproject, one launch
+inline constexpr const char* kDemodulate = "demodulate";  // CUDA: + reproject, one launch
 inline constexpr const char* kReproject = "reproject";
 inline constexpr const char* kVariance = "variance";
 inline constexpr const char* kAtrous = "atrous";          // all iterations together
 inline constexpr const char* kFeedback = "feedback";      // copy of the feedback tap
-inline constexpr const char* kRemodulate = "remodulate";  // fast mode: in the last iteration
+inline constexpr const char* kRemodulate = "remodulate";  // CUDA: in the last iteration
 inline constexpr const char* kTaa = "taa";                // only with --svgf-taa on
 inline constexpr const char* kSplitSum = "split_sum";     // direct + indirect (split frames)
 

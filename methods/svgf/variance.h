@@ -78,15 +78,18 @@ struct VarianceEstimate {
     const Power normal_power = Power::of(params.phi_normal);
     const int r = params.spatial_variance_radius;
     Sums s;
-    // Where the flavor asks for it (fast mode), the default radius as a compile-time loop, and
-    // without the bounds tests where the footprint is inside: the same taps in the same order.
-    // (Exact mode's kernel got no faster so on the H200: 0.219 ms against 0.200 at 1080p
-    // camera-pan, docs/benchmarks.md.)
+    // Where the flavor asks for it, the default radius as a compile-time loop (each tap's
+    // depth scale a constant times the pixel's 1 / phi_z, not an IEEE square root and
+    // division), and (fast mode) without the bounds tests where the footprint is inside: the
+    // same taps in the same order. (Exact mode's kernel with the interior split got no faster
+    // on the H200: 0.219 ms against 0.200 at 1080p camera-pan, docs/benchmarks.md.)
     if (Flavor::kSplitInteriorVariance && r == kDefaultRadius) {
       if (x >= r && y >= r && x < guides.width - r && y < guides.height - r)
         taps<kDefaultRadius, false>(x, y, r, c, inv_phi_z, inv_phi_l, normal_power, s);
       else
         taps<kDefaultRadius, true>(x, y, r, c, inv_phi_z, inv_phi_l, normal_power, s);
+    } else if (Flavor::kUnrollVariance && r == kDefaultRadius) {
+      taps<kDefaultRadius, true>(x, y, r, c, inv_phi_z, inv_phi_l, normal_power, s);
     } else {
       taps<0, true>(x, y, r, c, inv_phi_z, inv_phi_l, normal_power, s);
     }
