@@ -46,13 +46,16 @@ SVGF_HD float det_scale_pow2_nonpositive(float y, float k) {
   return (y * bits_float(field)) * 5.42101086242752217e-20f;  // 2^-64
 }
 
-// c - a * b for a product a * b that is exact in float (the caller proves it): on the GPU one
-// fused multiply-add, whose one rounding is then the rounding of the separate difference, so
-// the bits are the CPU's (tests/det_math_test.cpp). Not a contraction: a product that rounds
-// must not come here.
+// c - a * b for a product a * b that is exact in float (the caller proves it): one fused
+// multiply-add where there is one (the GPU; the CPU kernels built for x86-64-v3 and v4), whose
+// one rounding is then the rounding of the separate difference, so the bits are the same
+// everywhere (tests/det_math_test.cpp). Not a contraction: a product that rounds must not come
+// here.
 SVGF_HD float sub_exact_product(float c, float a, float b) {
 #if defined(__CUDA_ARCH__)
   return __fmaf_rn(-a, b, c);
+#elif defined(__FMA__)
+  return __builtin_fmaf(-a, b, c);
 #else
   return c - a * b;
 #endif
@@ -60,7 +63,8 @@ SVGF_HD float sub_exact_product(float c, float a, float b) {
 
 // e^x = y 2^k for x clamped to [-104, 89]: Cody-Waite reduction x = k ln2 + r with |r| <= ln2/2
 // (ln2 split so k*ln2_hi is exact for |k| <= 255: ln2_hi has 15 significant bits, k 8, so the
-// GPU takes x - k*ln2_hi as one FMA) and the Cephes expf minimax polynomial for y = e^r.
+// GPU and the x86-64-v3/v4 kernels take x - k*ln2_hi as one FMA) and the Cephes expf minimax
+// polynomial for y = e^r.
 // Straight-line code, so the CPU loops vectorize it.
 struct ExpReduced {
   float y;  // e^r, in [0.7, 1.42]
