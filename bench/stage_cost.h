@@ -92,10 +92,11 @@ struct FrameTraits {
 // Stage::GradientAtrous. Upload and Download give the bytes crossing the host link (their ops are
 // 0). Fast mode and CUDA's exact mode (f.packed_exact) fuse stages: demodulate + reproject run
 // as one kernel, timed and counted as Demodulate (Reproject is then empty); feedback and
-// remodulate ride on the a-trous iterations. `f.emission`: the frames carry the optional emission planes, which demodulate
-// subtracts and remodulate adds back. `f.surface_fraction`: the share of pixels with a surface;
-// background pixels (no surface) skip the history, the edge-stopping taps and the planes those
-// read, and cost much less (for the gradient stages: the share of strata with a sample).
+// remodulate ride on the a-trous iterations. `f.emission`: the frames carry the optional
+// emission planes, which demodulate subtracts and remodulate adds back. `f.surface_fraction`:
+// the share of pixels with a surface; background pixels (no surface) skip the history, the
+// edge-stopping taps and the planes those read, and cost much less (for the gradient stages:
+// the share of strata with a sample).
 // `f.young_fraction`: of the surface pixels, those whose variance is the 7x7 estimate (its
 // (2r + 1)^2 taps, counted in StageCost::taps); the others pass through. A stage
 // the configuration does not run costs nothing: the gradient stages without --antilag gradient

@@ -64,8 +64,7 @@ SVGF_HD float sub_exact_product(float c, float a, float b) {
 // e^x = y 2^k for x clamped to [-104, 89]: Cody-Waite reduction x = k ln2 + r with |r| <= ln2/2
 // (ln2 split so k*ln2_hi is exact for |k| <= 255: ln2_hi has 15 significant bits, k 8, so the
 // GPU and the x86-64-v3/v4 kernels take x - k*ln2_hi as one FMA) and the Cephes expf minimax
-// polynomial for y = e^r.
-// Straight-line code, so the CPU loops vectorize it.
+// polynomial for y = e^r. Straight-line code, so the CPU loops vectorize it.
 struct ExpReduced {
   float y;  // e^r, in [0.7, 1.42]
   float k;  // integral, |k| <= 150
