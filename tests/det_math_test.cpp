@@ -215,10 +215,12 @@ TEST_CASE("det_scale_pow2_nonpositive gives det_scale_pow2's bits for every k <=
   REQUIRE(det_scale_pow2_nonpositive(1.4f, 0.f) == 1.4f);
 }
 
-// The GPU evaluates the reduction's x - k ln2_hi as one FMA (sub_exact_product): the same bits
-// only because k ln2_hi is exact for every k the reduction makes (|k| <= 150; the claim holds to
-// 255). Here the product's exactness for every such k, and the fused form (std::fma, one
-// rounding) against the separate one at the k of every 61st float in [-104, 89].
+// The GPU and the x86-64-v3/v4 CPU kernels evaluate the reduction's x - k ln2_hi as one FMA
+// (sub_exact_product; this binary takes the separate form, the variant tests the fused one):
+// the same bits only because k ln2_hi is exact for every k the reduction makes (|k| <= 150; the
+// claim holds to 255). Here the product's exactness for every such k, and the fused form
+// (std::fma, one rounding) against the separate one at the k of every 61st float in
+// [-104, 89].
 TEST_CASE("x - k ln2_hi in one FMA gives the separate form's bits", "[det_math]") {
   const float ln2_hi = 0.693145751953125f;
   for (int k = -255; k <= 255; ++k) {
