@@ -93,7 +93,7 @@ struct SvgfFast {
   // (kSplitInterior), the variance's 48 (its default 7x7 unrolled; kSplitInteriorVariance).
   static constexpr bool kSplitInterior = true;
   static constexpr bool kSplitInteriorVariance = true;
-  static constexpr bool kUnrollVariance = true;
+  static constexpr bool kUnrollVariance = true;  // implied: the split paths are unrolled
   static constexpr int kAtrousMaxRegisters = 0;
   template <class Body>
   static void with_normal_power(float phi_normal, const Body& body) {
