@@ -172,9 +172,7 @@ StageCost with_young_variance(StageCost steady, const SvgfParams& p, const Frame
   return steady;
 }
 
-bool tap_in_range(const SvgfParams& p) {
-  return p.feedback_tap >= 0 && p.feedback_tap < p.iterations;
-}
+bool tap_in_range(const SvgfParams& p) { return p.feeds_back_iteration(); }
 
 // The sanitize stage reads every input plane the pipeline uses and, on clean input, writes
 // nothing (the same kernel in both modes). `position`: the method reads world positions (BMFR),
@@ -337,15 +335,12 @@ StageCost with_fused_outputs(StageCost c, const SvgfParams& p, bool emission) {
   return c;
 }
 
-// The feedback copy and the remodulation as passes of their own, where nothing else does them:
-// no feedback tap in range (the accumulation's color is copied), no iteration.
+// The remodulation as a pass of its own where nothing else does it: no iteration. (Without a
+// feedback tap in range no pass copies the history either: the reprojection accumulates into
+// it, methods/svgf/pipeline.h.)
 StageCost unfused_output_cost(Stage stage, const SvgfParams& p, bool emission) {
   StageCost c;
-  if (stage == Stage::Feedback && !tap_in_range(p)) {
-    c.read = 3 * kFloat;
-    c.written = 3 * kFloat;
-    c.planes = "R accumulated color 3; W color history 3";
-  } else if (stage == Stage::Remodulate && p.iterations <= 0) {
+  if (stage == Stage::Remodulate && p.iterations <= 0) {
     c.read = (4 + 3 + (emission ? 3 : 0)) * kFloat;
     c.written = 3 * kFloat;
     c.ops = kRemodulate + (emission ? 3 : 0);
@@ -409,8 +404,8 @@ StageCost exact_cost(Stage stage, const SvgfParams& p, const FrameTraits& f, boo
       // Packed (CUDA), the feedback copy and the remodulation ride on the iterations.
       if (packed) c = with_fused_outputs(c, p, emission);
       break;
-    case Stage::Feedback:  // a copy: the tap's output, or the accumulation when none
-      if (packed) return unfused_output_cost(stage, p, emission);
+    case Stage::Feedback:  // a copy of the tap's output; none without a tap in range
+      if (packed || !tap_in_range(p)) return unfused_output_cost(stage, p, emission);
       c.read = 3 * kFloat;
       c.written = 3 * kFloat;
       c.planes = "R color 3; W color history 3";

@@ -428,9 +428,20 @@ TEST_CASE("stage cost: an a-trous iteration's planes are the kernel's", "[bench]
 }
 
 TEST_CASE("stage cost: the feedback copy's planes are the kernel's", "[bench][stage_cost]") {
+  // The copy runs where an iteration is fed back; without one the reprojection accumulates into
+  // the color history and no pass copies it (methods/svgf/pipeline.h).
+  SvgfParams tap = without_antilag();
+  tap.feedback_tap = 1;
+  const bench::StageCost c = bench::stage_cost(Mode::Exact, Stage::Feedback, tap, false, 1.0);
   Rig rig;
   const CopyRgbKernel k{kW, rig.input_rgb("filtered", 0.1f, 2.f), rig.output_rgb("next_color")};
-  require_model(rig, k, Stage::Feedback, false, true);
+  require_planes(rig, k, "feedback", true, {c.read / 4.0, c.written / 4.0});
+  SvgfParams no_tap = tap;
+  for (int t : {-1, tap.iterations}) {
+    no_tap.feedback_tap = t;
+    for (Mode mode : {Mode::Exact, Mode::Fast})
+      CHECK(bench::stage_cost(mode, Stage::Feedback, no_tap, false, 1.0).bytes() == 0);
+  }
 }
 
 TEST_CASE("stage cost: remodulate's planes are the kernel's", "[bench][stage_cost]") {
@@ -681,7 +692,7 @@ TEST_CASE("stage cost: CUDA's exact mode over packed pixels differs where the pa
   // The a-trous with the feedback copy and the remodulation, against three passes: the tap's
   // filtered color and the last filtered color are not read back (2 x 3 floats), the last
   // iteration writes the output instead of a packed pixel (4 floats fewer). Without a tap in
-  // range the accumulation's color is copied by its own pass in both.
+  // range neither copies the history (the reprojection accumulates into it).
   SvgfParams tap = p;
   tap.feedback_tap = 1;
   SvgfParams no_tap = p;
@@ -703,7 +714,8 @@ TEST_CASE("stage cost: CUDA's exact mode over packed pixels differs where the pa
     CHECK(cost(Stage::Remodulate, 1.0, true, params).bytes() == 0);
   }
   CHECK(cost(Stage::Feedback, 1.0, true, tap).bytes() == 0);
-  CHECK(cost(Stage::Feedback, 1.0, true, no_tap).bytes() == 6 * 4);
+  CHECK(cost(Stage::Feedback, 1.0, true, no_tap).bytes() == 0);
+  CHECK(cost(Stage::Feedback, 1.0, false, no_tap).bytes() == 0);
   // The same fused a-trous as fast mode's, but for its operations.
   bench::FrameTraits f = frames(1.0, 1920, 1080), g = f;
   g.packed_exact = true;

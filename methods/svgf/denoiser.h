@@ -4,6 +4,7 @@
 // instantiate it). The history ping-pongs between two slots: a frame reads slot `slot_` and
 // writes the other. A frame split into direct and indirect (SvgfParams::split) filters direct
 // with the history below and indirect with a second one, allocated on the first split frame.
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -23,7 +24,8 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
   SvgfDenoiser(const SvgfParams& params, const EngineConfig& config)
       : params_(params), mode_(config.mode), backend_(config) {
     params_.validate();
-    backend_.set_method_planes(2 * (3 + 2 + 1 + 4) + 3 + 4 + (packs_guides() ? 4 : 0) +
+    backend_.set_method_planes(2 * (3 + 2 + 1 + 4) + 3 + (accumulates_color() ? 4 : 1) +
+                               (packs_guides() ? 4 : 0) +
                                (gradient_mode() ? 1 : 0) + (params_.taa ? 3 * 3 : 0));
   }
 
@@ -51,6 +53,7 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
     const typename Backend::Buffer* which = pick();
     if (!which) throw unknown_buffer("svgf", name, debug_buffers());
     if (backend_.width() == 0) return Image();
+    if (which == &accumulated_ && !accumulates_color()) return accumulation();
     return backend_.read(*which);
   }
 
@@ -116,6 +119,19 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
     has_history_ = true;
     split_history_ = split;
     report_.frame_done(engine);
+  }
+
+  // The accumulation as a debug buffer (color + variance) where its color was written into the
+  // color history (no iteration fed back): the last signal's, the indirect one after a split
+  // frame, as the shared variance plane is.
+  Image accumulation() const {
+    const Image color = backend_.read(color_history_[split_history_ ? 1 : 0][slot_]);
+    const Image variance = backend_.read(accumulated_);
+    Image out(color.width(), color.height(), 4);
+    const size_t n = static_cast<size_t>(color.width()) * color.height();
+    for (int c = 0; c < 3; ++c) std::copy_n(color.plane(c), n, out.plane(c));
+    std::copy_n(variance.plane(0), n, out.plane(3));
+    return out;
   }
 
   bool gradient_mode() const { return params_.antilag == Antilag::Gradient; }
@@ -185,7 +201,12 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
     b.next_moment2 = backend_.plane(moments_[set][next], 1);
     b.next_history = backend_.plane(history_[set][next], 0);
     b.illumination = backend_.rgb(illumination_);
-    b.accumulated = {backend_.rgb(accumulated_), backend_.plane(accumulated_, 3)};
+    // The accumulation's variance; its color only where an iteration is fed back (otherwise
+    // the pipeline accumulates into the color history, methods/svgf/pipeline.h).
+    if (accumulates_color())
+      b.accumulated = {backend_.rgb(accumulated_), backend_.plane(accumulated_, 3)};
+    else
+      b.accumulated = {RgbView(), backend_.plane(accumulated_, 0)};
     b.signal[0] = backend_.plane(signal_[0], 0);
     b.signal[1] = backend_.plane(signal_[1], 0);
     b.output = output;
@@ -198,6 +219,11 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
     run_svgf_frame<Flavor>(engine, b, params_, has_history_, split ? &indirect : nullptr);
   }
 
+  // Whether a signal needs the accumulation's color planes: an iteration is fed back.
+  bool accumulates_color() const {
+    return params_.feeds_back_iteration() || params_.indirect().feeds_back_iteration();
+  }
+
   void allocate() {
     split_allocated_ = false;
     try {
@@ -208,7 +234,7 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
         backend_.allocate(signal_[s], 4, "a-trous buffers");
       }
       backend_.allocate(illumination_, 3, "illumination");
-      backend_.allocate(accumulated_, 4, "accumulation");
+      backend_.allocate(accumulated_, accumulates_color() ? 4 : 1, "accumulation");
       if (packs_guides()) backend_.allocate(packed_guides_, 4, "packed guides");
       if (params_.taa) {
         backend_.allocate(remodulated_, 3, "remodulated color");

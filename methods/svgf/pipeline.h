@@ -222,9 +222,15 @@ inline ReprojectKernel reproject_kernel_for(const SvgfFrameBuffers& b, const Svg
 // history, its variance, its filter; the remodulated result goes to `out`. `lambda`: A-SVGF's
 // per-stratum lambda, or null.
 template <class Flavor, class Engine>
-void run_svgf_signal(Engine& engine, const SvgfFrameBuffers& b, const SvgfParams& p,
+void run_svgf_signal(Engine& engine, const SvgfFrameBuffers& buffers, const SvgfParams& p,
                      bool has_history, const float* lambda, RgbView out) {
   namespace stage = svgf_stage;
+  // Without a feedback tap in range the next frame's color history is the accumulation itself:
+  // the reprojection writes its color there, and no pass copies it (the variance reads it from
+  // there; the same values, so the same bits). The caller's accumulation color planes are then
+  // not touched (the denoisers allocate none).
+  SvgfFrameBuffers b = buffers;
+  if (!p.feeds_back_iteration()) b.accumulated.color = b.next_color;
   const int w = b.guides.width;
   const int h = b.guides.height;
   const Flavor flavor;
@@ -234,7 +240,8 @@ void run_svgf_signal(Engine& engine, const SvgfFrameBuffers& b, const SvgfParams
   const RemodulateSink remodulate{b.albedo, b.emission, out, p.albedo_epsilon};
 
   // 1. (color - emission) / albedo -> illumination (the inputs are sanitized already).
-  // 2. illumination + history -> accumulated color, moments and history length.
+  // 2. illumination + history -> accumulated color (into the color history when no iteration is
+  //    fed back), moments and history length.
   //    Fused, the same thread reprojects the illumination it just wrote, and packs the guides.
   //    Unfused with packed guides, the demodulation packs them.
   const PackGuidesKernel pack{b.guides, reinterpret_cast<Packed4*>(b.packed_guides)};
@@ -287,10 +294,6 @@ void run_svgf_signal(Engine& engine, const SvgfFrameBuffers& b, const SvgfParams
       }
       current = 1 - current;
     }
-    // No feedback tap in range: the unfiltered accumulation is the history.
-    if (p.feedback_tap < 0 || p.feedback_tap >= p.iterations)
-      engine.run(stage::kFeedback, CopyRgbKernel{w, b.accumulated.color, b.next_color}, w, h);
-
     // 5. filtered illumination * albedo + emission -> output (fused: done by the last
     //    iteration, unless there was none).
     if (!Flavor::kFusedOutputs || p.iterations <= 0)
