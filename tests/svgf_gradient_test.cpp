@@ -1,6 +1,7 @@
 // A-SVGF's gradient stages (methods/svgf/gradient.h) and their use in the reprojection, on
 // every backend (tests/test_device.h). Fast mode runs these exact kernels: CPU and CUDA exact.
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include <catch2/catch.hpp>
@@ -114,6 +115,27 @@ TEST_CASE("gradient: lambda and alpha' known answers", "[gradient]") {
   REQUIRE(antilag_alpha(0.05f, 0.25f) == (1.f - 0.25f) * 0.05f + 0.25f);
   REQUIRE(antilag_alpha(0.05f, 0.25f) == Approx(0.2875).epsilon(1e-7));
   REQUIRE(antilag_alpha(1.f, 0.3f) <= 1.f);
+}
+
+// The a-trous's taps take their depth scale from two distances a stratum (axis, diagonal):
+// the bits of tap_depth_scale for every tap of every step the parameters allow (1 to 2^7
+// strata), over tolerances from tiny to huge.
+TEST_CASE("gradient: a tap's depth scale by its distance class is tap_depth_scale's", "[gradient]") {
+  for (int it = 0; it < 8; ++it) {
+    GradientAtrousKernel k;
+    k.step = 1 << it;
+    const float axis = k.inv_axis_distance(), diagonal = k.inv_diagonal_distance();
+    for (float inv_phi_z : {0.f, 1e-30f, 3e-8f, 0.37f, 1.f, 7.3f, 1e8f, 3e30f,
+                            std::numeric_limits<float>::infinity()})
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          if (dx == 0 && dy == 0) continue;
+          INFO("step " << k.step << ", tap (" << dx << ", " << dy << "), 1/phi_z " << inv_phi_z);
+          const float want = ExactArith::tap_depth_scale(inv_phi_z, dx, dy, 3 * k.step);
+          const float got = inv_phi_z * (dx != 0 && dy != 0 ? diagonal : axis);
+          REQUIRE(float_bits(got) == float_bits(want));
+        }
+  }
 }
 
 // A 3x1 or 5x1 row of strata over a flat frame (9 or 15 x 3 pixels), each stratum's guide its

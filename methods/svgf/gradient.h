@@ -119,13 +119,33 @@ struct GradientAtrousKernel {
   float depth_gradient_floor = 1e-8f;
 
   SVGF_HD void operator()(int sx, int sy) const {
+    // The default phi_normal = 2^7 as seven squarings known at compile time (the same bits as
+    // the run-time form: NormalPower); the GPU's taps otherwise ran the squaring loop.
+    const NormalPower<ExactArith> power = NormalPower<ExactArith>::of(phi_normal);
+    if (power.squarings == 7)
+      filter(sx, sy, NormalPowerFixed<7>());
+    else
+      filter(sx, sy, power);
+  }
+
+  // 1 / distance in pixels of an axis tap and of a diagonal tap (the only two distances of
+  // the 3x3 taps): inv_tap_distance's value for every tap of its class (the squares of
+  // +-step * 3 are the same), once a stratum instead of an IEEE square root and division a tap.
+  SVGF_HD float inv_axis_distance() const { return inv_tap_distance(1, 0, step * kGradientStratum); }
+  SVGF_HD float inv_diagonal_distance() const {
+    return inv_tap_distance(1, 1, step * kGradientStratum);
+  }
+
+ private:
+  template <class Power>
+  SVGF_HD void filter(int sx, int sy, const Power& power) const {
     const int s = sy * at.strata_width + sx;
     const int p = at.pixel(sx, sy);
     const EdgeSample c{guides.depth[p], guides.normal.load(p), 0.f};
     const uint32_t mesh = guides.mesh_id[p];
     const float inv_phi_z =
         inv_depth_tolerance<ExactArith>(phi_depth, guides.depth_fwidth(p), depth_gradient_floor);
-    const NormalPower<ExactArith> power = NormalPower<ExactArith>::of(phi_normal);
+    const float inv_axis = inv_axis_distance(), inv_diagonal = inv_diagonal_distance();
     float weight_sum = 0.f, delta = 0.f, normalizer = 0.f;
     for (int dy = -1; dy <= 1; ++dy) {
       for (int dx = -1; dx <= 1; ++dx) {
@@ -138,8 +158,8 @@ struct GradientAtrousKernel {
           const int pq = at.pixel(qx, qy);
           if (guides.mesh_id[pq] != mesh) continue;
           const EdgeSample e{guides.depth[pq], guides.normal.load(pq), 0.f};
-          const float scale =
-              ExactArith::tap_depth_scale(inv_phi_z, dx, dy, step * kGradientStratum);
+          // tap_depth_scale(inv_phi_z, dx, dy, step * 3), its distance from the tap's class.
+          const float scale = inv_phi_z * (dx != 0 && dy != 0 ? inv_diagonal : inv_axis);
           w = edge_stopping_weight<ExactArith>(c, e, scale, power, 0.f);
         }
         weight_sum = weight_sum + w;
