@@ -1,5 +1,6 @@
 // The whole SVGF pipeline through the public Denoiser interface, each test body on the CPU, CUDA
 // exact and CUDA fast (tests/test_device.h); then what only the CPU engine has.
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -125,6 +126,40 @@ void feedback_tap_is_next_history(const TestDevice& device) {
   for (int x = 0; x < 4; ++x) {
     const float hv = history.at(x, 2, 0);
     REQUIRE(acc1.at(x, 2, 0) == hv + (illum1.at(x, 2, 0) - hv) * 0.5f);
+  }
+}
+
+// Without a fed-back iteration the reprojection accumulates into the color history (no copy):
+// the `accumulated` debug buffer's color is then the history the next frame reads. A tap past
+// the last iteration is the same configuration as -1, and so is one where only the indirect
+// parameters would feed back (frames without the split run the direct signal alone; the
+// denoiser then keeps the accumulation's color planes, unused): the same buffers.
+void accumulation_is_the_history_without_a_tap(const TestDevice& device) {
+  test::SyntheticScene scene;
+  const auto run = [&](int tap, int indirect_iterations) {
+    DenoiserConfig config = config_for(device);
+    config.svgf.iterations = 3;
+    config.svgf.feedback_tap = tap;
+    config.svgf.indirect_iterations = indirect_iterations;
+    auto d = make_denoiser(config);
+    Image out;
+    for (int k = 0; k < 3; ++k) d->denoise(scene.frame(k), out);
+    return std::make_pair(d->read_buffer(svgf_buffer::kAccumulated),
+                          d->read_buffer(svgf_buffer::kColorHistory));
+  };
+  const auto [first_acc, first_history] = run(-1, -1);
+  for (const auto& [tap, indirect] :
+       {std::make_pair(-1, -1), std::make_pair(3, -1), std::make_pair(3, 4)}) {
+    INFO("feedback tap " << tap << " of 3 iterations, indirect iterations " << indirect);
+    const auto [acc, history] = run(tap, indirect);
+    REQUIRE(acc.channels() == 4);
+    REQUIRE(history.channels() == 3);
+    const size_t n = history.pixel_count();
+    for (int c = 0; c < 3; ++c)
+      REQUIRE(std::equal(history.plane(c), history.plane(c) + n, acc.plane(c)));
+    REQUIRE(std::equal(first_acc.data().begin(), first_acc.data().end(), acc.data().begin()));
+    REQUIRE(std::equal(first_history.data().begin(), first_history.data().end(),
+                       history.data().begin()));
   }
 }
 
@@ -355,6 +390,8 @@ SVGF_DEVICE_TEST("pipeline: --svgf-taa blends the output with its reprojected, c
                  "[pipeline]", taa_follows_remodulation)
 SVGF_DEVICE_TEST("pipeline: denoising a moving synthetic sequence beats the noisy input",
                  "[pipeline]", beats_noisy_input)
+SVGF_DEVICE_TEST("pipeline: without a fed-back iteration the accumulation is the color history",
+                 "[pipeline]", accumulation_is_the_history_without_a_tap)
 SVGF_DEVICE_TEST("pipeline: the feedback tap is what the next frame reads", "[pipeline]",
                  feedback_tap_is_next_history)
 SVGF_DEVICE_TEST("pipeline: NaN, Inf and negative input is counted and does not poison the history",

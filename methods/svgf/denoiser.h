@@ -53,7 +53,8 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
     const typename Backend::Buffer* which = pick();
     if (!which) throw unknown_buffer("svgf", name, debug_buffers());
     if (backend_.width() == 0) return Image();
-    if (which == &accumulated_ && !accumulates_color()) return accumulation();
+    const SvgfParams& last = split_history_ ? params_.indirect() : params_;  // the last signal
+    if (which == &accumulated_ && !last.feeds_back_iteration()) return accumulation();
     return backend_.read(*which);
   }
 
@@ -121,16 +122,16 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
     report_.frame_done(engine);
   }
 
-  // The accumulation as a debug buffer (color + variance) where its color was written into the
-  // color history (no iteration fed back): the last signal's, the indirect one after a split
-  // frame, as the shared variance plane is.
+  // The accumulation as a debug buffer (color + variance) where the last signal (the indirect
+  // one after a split frame, as for the shared variance plane) wrote its color into the color
+  // history: no iteration of it fed back.
   Image accumulation() const {
     const Image color = backend_.read(color_history_[split_history_ ? 1 : 0][slot_]);
     const Image variance = backend_.read(accumulated_);
     Image out(color.width(), color.height(), 4);
     const size_t n = static_cast<size_t>(color.width()) * color.height();
     for (int c = 0; c < 3; ++c) std::copy_n(color.plane(c), n, out.plane(c));
-    std::copy_n(variance.plane(0), n, out.plane(3));
+    std::copy_n(variance.plane(accumulates_color() ? 3 : 0), n, out.plane(3));
     return out;
   }
 

@@ -136,11 +136,11 @@ struct SvgfParams {
   int indirect_iterations = -1;
   float indirect_phi_color = -1.f;
 
-  // The parameters the indirect signal is filtered with.
   // Whether an a-trous iteration's output is the history; otherwise the unfiltered
   // accumulation is, and the reprojection writes it there directly (methods/svgf/pipeline.h).
   bool feeds_back_iteration() const { return feedback_tap >= 0 && feedback_tap < iterations; }
 
+  // The parameters the indirect signal is filtered with.
   SvgfParams indirect() const {
     SvgfParams q = *this;
     if (indirect_iterations >= 0) q.iterations = indirect_iterations;
