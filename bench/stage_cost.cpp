@@ -172,8 +172,6 @@ StageCost with_young_variance(StageCost steady, const SvgfParams& p, const Frame
   return steady;
 }
 
-bool tap_in_range(const SvgfParams& p) { return p.feeds_back_iteration(); }
-
 // The sanitize stage reads every input plane the pipeline uses and, on clean input, writes
 // nothing (the same kernel in both modes). `position`: the method reads world positions (BMFR),
 // which sanitize checks too: 6 more bound tests.
@@ -329,7 +327,7 @@ StageCost fused_reprojection_cost(const SvgfParams& p, const FrameTraits& f, boo
 StageCost with_fused_outputs(StageCost c, const SvgfParams& p, bool emission) {
   if (p.iterations <= 0) return c;
   c.read += (3 + (emission ? 3 : 0)) * kFloat;
-  c.written += (-4 + 3 + (tap_in_range(p) ? 3 : 0)) * kFloat;
+  c.written += (-4 + 3 + (p.feeds_back_iteration() ? 3 : 0)) * kFloat;
   c.ops += kRemodulate + (emission ? 3 : 0);
   c.planes += "; last R albedo 3 (+ emission 3), W output 3 (not packed 4); tap W history 3";
   return c;
@@ -405,7 +403,7 @@ StageCost exact_cost(Stage stage, const SvgfParams& p, const FrameTraits& f, boo
       if (packed) c = with_fused_outputs(c, p, emission);
       break;
     case Stage::Feedback:  // a copy of the tap's output; none without a tap in range
-      if (packed || !tap_in_range(p)) return unfused_output_cost(stage, p, emission);
+      if (packed || !p.feeds_back_iteration()) return unfused_output_cost(stage, p, emission);
       c.read = 3 * kFloat;
       c.written = 3 * kFloat;
       c.planes = "R color 3; W color history 3";
