@@ -40,6 +40,17 @@ struct NormalPowerFixed {
   }
 };
 
+// Runs body(power) with the normal weight's power: the default 128 = 2^7 as seven squarings
+// known at compile time, any other exponent in its run-time form (the same bits either way:
+// NormalPower). On the GPU the taps then run no squaring loop.
+SVGF_HD_TEMPLATE
+template <class Arith, class Body>
+SVGF_HD void with_normal_power_of(float phi_normal, const Body& body) {
+  const NormalPower<Arith> p = NormalPower<Arith>::of(phi_normal);
+  if (p.squarings == 7) body(NormalPowerFixed<7>());
+  else body(p);
+}
+
 // The normal term's base: n_p . n_q clamped to [0, 1] (Falcor's saturate). Unit normals give
 // at most 1, but normals stored as half floats reach |n|^2 = 1.0003, and uncapped, a same-face
 // neighbour would weigh up to 1.04 times the centre. A NaN normal zeroes the weight: exact mode

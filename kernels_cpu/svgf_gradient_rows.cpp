@@ -50,7 +50,7 @@ SVGF_TAP_LOOP void gradient_atrous_interior(const GradientAtrousKernel& kernel,
                                             int x1, const Power& power) {
   const GradientAtrousKernel k = kernel;  // a local copy: its plane pointers stay in registers
   const int sw = k.at.strata_width, step = k.step;
-  const float inv_axis = k.inv_axis_distance(), inv_diagonal = k.inv_diagonal_distance();
+  const GradientAtrousKernel::InvTapDistances distances = k.inv_tap_distances();
 #pragma GCC ivdep
   for (int sx = x0; sx < x1; ++sx) {
     const int s = sy * sw + sx;
@@ -66,8 +66,8 @@ SVGF_TAP_LOOP void gradient_atrous_interior(const GradientAtrousKernel& kernel,
       const int q = s + (dy * sw + dx) * step;
       const bool centre = dx == 0 && dy == 0;
       const EdgeSample e{depth[q], make_vec3(nx[q], ny[q], nz[q]), 0.f};
-      // The kernel's scale (its distance by the tap's class; the centre's is not used).
-      const float scale = inv_phi_z * (dx != 0 && dy != 0 ? inv_diagonal : inv_axis);
+      // The kernel's scale (the centre's is not used).
+      const float scale = distances.depth_scale(inv_phi_z, dx, dy);
       const float w = centre ? 1.f : edge_stopping_weight<RowExactArith>(c, e, scale, power, 0.f);
       const bool take = (k.in.weight[q] > 0.f) & (centre | (mesh_of[q] == mesh));
       const float with_sum = weight_sum + w;

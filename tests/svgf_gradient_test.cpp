@@ -124,7 +124,7 @@ TEST_CASE("gradient: a tap's depth scale by its distance class is tap_depth_scal
   for (int it = 0; it < 8; ++it) {
     GradientAtrousKernel k;
     k.step = 1 << it;
-    const float axis = k.inv_axis_distance(), diagonal = k.inv_diagonal_distance();
+    const GradientAtrousKernel::InvTapDistances distances = k.inv_tap_distances();
     for (float inv_phi_z : {0.f, 1e-30f, 3e-8f, 0.37f, 1.f, 7.3f, 1e8f, 3e30f,
                             std::numeric_limits<float>::infinity()})
       for (int dy = -1; dy <= 1; ++dy)
@@ -132,7 +132,7 @@ TEST_CASE("gradient: a tap's depth scale by its distance class is tap_depth_scal
           if (dx == 0 && dy == 0) continue;
           INFO("step " << k.step << ", tap (" << dx << ", " << dy << "), 1/phi_z " << inv_phi_z);
           const float want = ExactArith::tap_depth_scale(inv_phi_z, dx, dy, 3 * k.step);
-          const float got = inv_phi_z * (dx != 0 && dy != 0 ? diagonal : axis);
+          const float got = distances.depth_scale(inv_phi_z, dx, dy);
           REQUIRE(float_bits(got) == float_bits(want));
         }
   }

@@ -12,16 +12,6 @@
 
 namespace svgf {
 
-// Runs body(power) with the normal weight's power: the default 128 = 2^7 as seven squarings
-// known at compile time, any other exponent in its run-time form (the same bits either way:
-// NormalPower).
-template <class Arith, class Body>
-void with_normal_power_of(float phi_normal, const Body& body) {
-  const NormalPower<Arith> p = NormalPower<Arith>::of(phi_normal);
-  if (p.squarings == 7) body(NormalPowerFixed<7>());
-  else body(p);
-}
-
 struct SvgfExact {
   using Arith = ExactArith;
   using Guides = GuideView;             // separate depth and normal planes

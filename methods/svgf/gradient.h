@@ -119,21 +119,24 @@ struct GradientAtrousKernel {
   float depth_gradient_floor = 1e-8f;
 
   SVGF_HD void operator()(int sx, int sy) const {
-    // The default phi_normal = 2^7 as seven squarings known at compile time (the same bits as
-    // the run-time form: NormalPower); the GPU's taps otherwise ran the squaring loop.
-    const NormalPower<ExactArith> power = NormalPower<ExactArith>::of(phi_normal);
-    if (power.squarings == 7)
-      filter(sx, sy, NormalPowerFixed<7>());
-    else
-      filter(sx, sy, power);
+    with_normal_power_of<ExactArith>(phi_normal,
+                                     [&](const auto& power) { filter(sx, sy, power); });
   }
 
-  // 1 / distance in pixels of an axis tap and of a diagonal tap (the only two distances of
-  // the 3x3 taps): inv_tap_distance's value for every tap of its class (the squares of
-  // +-step * 3 are the same), once a stratum instead of an IEEE square root and division a tap.
-  SVGF_HD float inv_axis_distance() const { return inv_tap_distance(1, 0, step * kGradientStratum); }
-  SVGF_HD float inv_diagonal_distance() const {
-    return inv_tap_distance(1, 1, step * kGradientStratum);
+  // 1 / distance in pixels of the 3x3 taps' two classes, axis and diagonal (the squares of
+  // +-step * 3 are the same within a class), once a stratum instead of an IEEE square root and
+  // division a tap.
+  struct InvTapDistances {
+    float axis, diagonal;
+    // A neighbour tap's depth scale: tap_depth_scale(inv_phi_z, dx, dy, step * 3)'s bits
+    // (tests/svgf_gradient_test.cpp).
+    SVGF_HD float depth_scale(float inv_phi_z, int dx, int dy) const {
+      return inv_phi_z * (dx != 0 && dy != 0 ? diagonal : axis);
+    }
+  };
+  SVGF_HD InvTapDistances inv_tap_distances() const {
+    return {inv_tap_distance(1, 0, step * kGradientStratum),
+            inv_tap_distance(1, 1, step * kGradientStratum)};
   }
 
  private:
@@ -145,7 +148,7 @@ struct GradientAtrousKernel {
     const uint32_t mesh = guides.mesh_id[p];
     const float inv_phi_z =
         inv_depth_tolerance<ExactArith>(phi_depth, guides.depth_fwidth(p), depth_gradient_floor);
-    const float inv_axis = inv_axis_distance(), inv_diagonal = inv_diagonal_distance();
+    const InvTapDistances distances = inv_tap_distances();
     float weight_sum = 0.f, delta = 0.f, normalizer = 0.f;
     for (int dy = -1; dy <= 1; ++dy) {
       for (int dx = -1; dx <= 1; ++dx) {
@@ -158,9 +161,8 @@ struct GradientAtrousKernel {
           const int pq = at.pixel(qx, qy);
           if (guides.mesh_id[pq] != mesh) continue;
           const EdgeSample e{guides.depth[pq], guides.normal.load(pq), 0.f};
-          // tap_depth_scale(inv_phi_z, dx, dy, step * 3), its distance from the tap's class.
-          const float scale = inv_phi_z * (dx != 0 && dy != 0 ? inv_diagonal : inv_axis);
-          w = edge_stopping_weight<ExactArith>(c, e, scale, power, 0.f);
+          w = edge_stopping_weight<ExactArith>(c, e, distances.depth_scale(inv_phi_z, dx, dy),
+                                               power, 0.f);
         }
         weight_sum = weight_sum + w;
         delta = delta + in.delta[q] * w;
