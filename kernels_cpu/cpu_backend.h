@@ -18,7 +18,9 @@
 //                                          side (world positions, direct and indirect, and the
 //                                          gradient samples only when asked for; split: the
 //                                          frame carries both)
-//   GuideView previous_guides()            the guides of the frame before (valid after one frame)
+//   GuideView previous_guides()            the frame before's depth, normal and mesh id (valid
+//                                          after one frame; its depth gradient and motion are
+//                                          not kept: null)
 //   RgbView output(out)                    where the frame's output goes
 //   void finish(frame, out)                after the frame: output to the host, guides kept
 #include <algorithm>
@@ -105,24 +107,22 @@ class CpuBackend {
     return in;
   }
 
-  // The previous frame's guides: a copy taken by finish(), since the caller's frame may not
-  // outlive the call. Only a method that asks for them pays for the copy (the first call
-  // allocates it; the first frame has no history, so its planes are not read).
+  // The previous frame's depth, normal and mesh id (what the methods read of it: SVGF's
+  // reprojection, the JBF's temporal pass; its depth gradient and motion are not kept, as on
+  // CUDA): a copy taken by finish(), since the caller's frame may not outlive the call. Only a
+  // method that asks for them pays for the copy (the first call allocates it; the first frame
+  // has no history, so its planes are not read).
   GuideView previous_guides() {
     if (prev_planes_.width() != width_ || prev_planes_.height() != height_) {
-      prev_planes_ = Image(width_, height_, 8);
+      prev_planes_ = Image(width_, height_, 4);
       prev_mesh_id_.assign(static_cast<size_t>(width_) * height_, 0u);
     }
     GuideView g;
     g.width = width_;
     g.height = height_;
     g.depth = prev_planes_.plane(0);
-    g.depth_dx = prev_planes_.plane(1);
-    g.depth_dy = prev_planes_.plane(2);
-    g.normal = prev_planes_.rgb(3);
+    g.normal = prev_planes_.rgb(1);
     g.mesh_id = prev_mesh_id_.data();
-    g.motion_x = prev_planes_.plane(6);
-    g.motion_y = prev_planes_.plane(7);
     return g;
   }
 
@@ -139,13 +139,9 @@ class CpuBackend {
       std::copy(src, src + n, prev_planes_.plane(plane));
     };
     copy(g.depth, 0);
-    copy(g.depth_dx, 1);
-    copy(g.depth_dy, 2);
-    copy(g.normal.r, 3);
-    copy(g.normal.g, 4);
-    copy(g.normal.b, 5);
-    copy(g.motion_x, 6);
-    copy(g.motion_y, 7);
+    copy(g.normal.r, 1);
+    copy(g.normal.g, 2);
+    copy(g.normal.b, 3);
     prev_mesh_id_ = f.mesh_id;
   }
 
@@ -258,7 +254,7 @@ class CpuBackend {
 
   CpuEngine engine_;
   int width_ = 0, height_ = 0;
-  Image prev_planes_;  // depth, depth_dx, depth_dy, normal xyz, motion xy
+  Image prev_planes_;  // depth, normal xyz
   Image repaired_;     // the inputs of a frame that needed repairs
   GuideView current_guides_;
   std::vector<uint32_t> prev_mesh_id_;

@@ -64,8 +64,8 @@ class CudaBackend {
     width_ = w;
     height_ = h;
     try {
-      for (int s = 0; s < 2; ++s) allocate(guides_[s], kGuidePlanes, "frame guides");
-      allocate(shading_, kInputPlanes - kGuidePlanes, "frame inputs");
+      for (int s = 0; s < 2; ++s) allocate(guides_[s], kKeptPlanes, "frame guides");
+      allocate(shading_, kInputPlanes - kKeptPlanes, "frame inputs");
       allocate(output_, 3, "output");
       staging_in_.resize(kInputPlanes * pixels(), "the pinned input staging buffer");
       staging_out_.resize(3 * pixels(), "the pinned output staging buffer");
@@ -95,7 +95,7 @@ class CudaBackend {
   // Zero-filled, as the CPU's: a buffer a method fills only in part (BMFR's per-block data)
   // reads back defined.
   void allocate(Buffer& b, int channels, const char* what) {
-    const size_t planes = static_cast<size_t>(kInputPlanes + kGuidePlanes + 3 + method_planes_);
+    const size_t planes = static_cast<size_t>(kInputPlanes + kKeptPlanes + 3 + method_planes_);
     const size_t mib = (planes * pixels() * sizeof(float) + (1u << 20) - 1) >> 20;
     const std::string named = std::string(what) + " (" + std::to_string(width_) + "x" +
                               std::to_string(height_) + " frames need about " +
@@ -178,10 +178,10 @@ class CudaBackend {
     }
     host_copies_.run();
     engine_.mark(kUploadStage);
-    // The guides go to this frame's slot, the rest to the one shading buffer (two transfers
-    // from one staging buffer).
-    guides_[slot_].upload_async(staging, kGuidePlanes * n, engine_.stream());
-    shading_.upload_async(staging + kGuidePlanes * n, (planes - kGuidePlanes) * n,
+    // The guides the next frame reads go to this frame's slot, the rest to the one shading
+    // buffer (two transfers from one staging buffer).
+    guides_[slot_].upload_async(staging, kKeptPlanes * n, engine_.stream());
+    shading_.upload_async(staging + kKeptPlanes * n, (planes - kKeptPlanes) * n,
                           engine_.stream());
     if (position) position_.upload_async(staging_position_.get(), 3 * n, engine_.stream());
     if (split) split_.upload_async(staging_split_.get(), 6 * n, engine_.stream());
@@ -224,7 +224,17 @@ class CudaBackend {
     return landed_inputs(emission, gradient, position, split);
   }
 
-  GuideView previous_guides() const { return guides(1 - slot_); }
+  // The previous frame's depth, normal and mesh id: what the methods read of it (SVGF's
+  // reprojection, the JBF's temporal pass). Its depth gradient and motion are not kept (null).
+  GuideView previous_guides() const {
+    GuideView g;
+    g.width = width_;
+    g.height = height_;
+    g.depth = plane(guides_[1 - slot_], kDepth);
+    g.normal = rgb(guides_[1 - slot_], kNormal);
+    g.mesh_id = reinterpret_cast<const uint32_t*>(plane(guides_[1 - slot_], kMeshId));
+    return g;
+  }
   RgbView output(Image&) { return rgb(output_, 0); }
   RgbView output(const DeviceTarget&) { return rgb(output_, 0); }
 
@@ -262,7 +272,7 @@ class CudaBackend {
   // The frame's inputs in the backend's planes, sanitized: what both paths hand the method.
   FrameInputs landed_inputs(bool emission, bool gradient, bool position, bool split) {
     FrameInputs f;
-    f.guides = guides(slot_);
+    f.guides = current_guides();
     f.color = input_rgb(kColor);
     f.albedo = input_rgb(kAlbedo);
     if (emission) f.emission = input_rgb(kEmission);
@@ -335,18 +345,19 @@ class CudaBackend {
   }
 
   // Planes of one frame's upload, in order; mesh_id travels as raw 32-bit words. The guides
-  // come first (planes 0 to 8, the slot of guides_ that is this frame's); the optional emission
-  // and gradient samples come last, so a frame without them uploads kRequiredPlanes only.
+  // the next frame reads come first (planes 0 to 4, the slot of guides_ that is this frame's:
+  // previous_guides()); the optional emission and gradient samples come last, so a frame
+  // without them uploads kRequiredPlanes only.
   enum InputPlane : int {
     kDepth = 0,
-    kDepthDx = 1,
-    kDepthDy = 2,
-    kNormal = 3,    // 3
-    kMotionX = 6,
-    kMotionY = 7,
-    kMeshId = 8,
-    kGuidePlanes = 9,
-    kColor = 9,     // 3; from here on in shading_, at plane - kGuidePlanes
+    kNormal = 1,    // 3
+    kMeshId = 4,
+    kKeptPlanes = 5,
+    kDepthDx = 5,   // from here on in shading_, at plane - kKeptPlanes
+    kDepthDy = 6,
+    kMotionX = 7,
+    kMotionY = 8,
+    kColor = 9,     // 3
     kAlbedo = 12,   // 3
     kRequiredPlanes = 15,
     kEmission = 15,  // 3, optional
@@ -371,22 +382,23 @@ class CudaBackend {
   }
 
 
-  GuideView guides(int slot) const {
+  // This frame's guides, from its slot and the shading buffer.
+  GuideView current_guides() const {
     GuideView g;
     g.width = width_;
     g.height = height_;
-    g.depth = plane(guides_[slot], kDepth);
-    g.depth_dx = plane(guides_[slot], kDepthDx);
-    g.depth_dy = plane(guides_[slot], kDepthDy);
-    g.normal = rgb(guides_[slot], kNormal);
-    g.mesh_id = reinterpret_cast<const uint32_t*>(plane(guides_[slot], kMeshId));
-    g.motion_x = plane(guides_[slot], kMotionX);
-    g.motion_y = plane(guides_[slot], kMotionY);
+    g.depth = input_plane(kDepth);
+    g.depth_dx = input_plane(kDepthDx);
+    g.depth_dy = input_plane(kDepthDy);
+    g.normal = input_rgb(kNormal);
+    g.mesh_id = reinterpret_cast<const uint32_t*>(input_plane(kMeshId));
+    g.motion_x = input_plane(kMotionX);
+    g.motion_y = input_plane(kMotionY);
     return g;
   }
   // An input plane of this frame, in whichever buffer holds it.
   float* input_plane(int p) const {
-    return p < kGuidePlanes ? plane(guides_[slot_], p) : plane(shading_, p - kGuidePlanes);
+    return p < kKeptPlanes ? plane(guides_[slot_], p) : plane(shading_, p - kKeptPlanes);
   }
   RgbView input_rgb(int p) const { return {input_plane(p), input_plane(p + 1), input_plane(p + 2)}; }
 
@@ -396,9 +408,10 @@ class CudaBackend {
   int width_ = 0, height_ = 0;
   int slot_ = 0;  // input slot the next frame is uploaded into
   int method_planes_ = 0;
-  // The guides of this frame and the previous one (reprojection reads the previous frame's
-  // through previous_guides(), nothing else of it), and this frame's other inputs once:
-  // 2 x 9 + 12 planes instead of 2 x 21 (docs/benchmarks.md, "Where the 618 MiB go").
+  // The depth, normal and mesh id of this frame and the previous one (the methods read those
+  // of the previous frame through previous_guides(), nothing else of it), and this frame's
+  // other inputs once: 2 x 5 + 16 planes instead of 2 x 21 (docs/benchmarks.md, "Where the
+  // 618 MiB go").
   Buffer guides_[2], shading_, output_, position_, split_;
   PinnedBuffer<float> staging_in_, staging_out_, staging_position_, staging_split_;
   HostStaging host_copies_;

@@ -30,7 +30,7 @@ namespace svgf {
 struct SvgfFrameBuffers {
   // Inputs of this frame.
   GuideView guides;
-  GuideView prev_guides;  // the previous frame's, kept by the denoiser
+  GuideView prev_guides;  // the previous frame's depth, normal and mesh id (no more is kept)
   // The depth this frame's points had in the previous camera (the reprojection's depth test).
   PreviousViewDepth previous_depth;
   ConstRgbView color;
