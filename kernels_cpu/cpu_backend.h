@@ -14,10 +14,12 @@
 //   float* plane(buffer, c); RgbView rgb(buffer, first); Image read(buffer)
 //                                          its planes as views; a host copy
 //   bool resize(w, h)                      frame size (true when buffers must be reallocated)
-//   FrameInputs inputs(frame, position, split, gradient)  this frame's inputs on the backend's
-//                                          side (world positions, direct and indirect, and the
-//                                          gradient samples only when asked for; split: the
-//                                          frame carries both)
+//   FrameInputs inputs(frame, position, split, gradient_into)  this frame's inputs on the
+//                                          backend's side (world positions, direct and
+//                                          indirect, and the gradient samples only when asked
+//                                          for; split: the frame carries both; gradient_into:
+//                                          3 planes the method lends for the gradient samples,
+//                                          where a backend that copies them puts them)
 //   GuideView previous_guides()            the frame before's depth, normal and mesh id (valid
 //                                          after one frame; its depth gradient and motion are
 //                                          not kept: null)
@@ -87,8 +89,10 @@ class CpuBackend {
   // read-only scan finds nothing wrong (the common case: one read of the inputs), else a
   // repaired copy. `position`: the method reads world positions (then they are checked too);
   // `split`: direct and indirect (the frame carries both), checked as color is.
+  // `gradient_into`: the method reads A-SVGF's gradient samples (read in place here; the
+  // planes it lends are for a backend that copies them).
   FrameInputs inputs(const Frame& f, bool position = false, bool split = false,
-                     bool gradient = false) {
+                     float* gradient_into = nullptr) {
     SanitizeInputs scan{width_, input_planes(f, position, split), {}};
     engine_.run_tallying(kSanitizeStage, scan, width_, height_);
     FrameInputs in;
@@ -102,7 +106,7 @@ class CpuBackend {
       in.indirect = f.indirect.rgb();
     }
     if (engine_.tallies().any()) in = repaired_inputs(f, position, split);
-    if (gradient) in.gradient = gradient_samples(f);
+    if (gradient_into) in.gradient = gradient_samples(f);
     current_guides_ = in.guides;
     return in;
   }

@@ -65,7 +65,7 @@ class CudaBackend {
     height_ = h;
     try {
       for (int s = 0; s < 2; ++s) allocate(guides_[s], kKeptPlanes, "frame guides");
-      allocate(shading_, kInputPlanes - kKeptPlanes, "frame inputs");
+      allocate(shading_, kShadingPlanes, "frame inputs");
       allocate(output_, 3, "output");
       staging_in_.resize(kInputPlanes * pixels(), "the pinned input staging buffer");
       staging_out_.resize(3 * pixels(), "the pinned output staging buffer");
@@ -95,7 +95,8 @@ class CudaBackend {
   // Zero-filled, as the CPU's: a buffer a method fills only in part (BMFR's per-block data)
   // reads back defined.
   void allocate(Buffer& b, int channels, const char* what) {
-    const size_t planes = static_cast<size_t>(kInputPlanes + kKeptPlanes + 3 + method_planes_);
+    const size_t planes =
+        static_cast<size_t>(2 * kKeptPlanes + kShadingPlanes + 3 + method_planes_);
     const size_t mib = (planes * pixels() * sizeof(float) + (1u << 20) - 1) >> 20;
     const std::string named = std::string(what) + " (" + std::to_string(width_) + "x" +
                               std::to_string(height_) + " frames need about " +
@@ -136,10 +137,11 @@ class CudaBackend {
   // `position`: the method reads world positions, uploaded into a buffer of their own (made on
   // the first request), so the methods that do not read them do not pay for them. `split`:
   // direct and indirect (the frame carries both), likewise in a buffer of their own.
-  // `gradient`: the method reads A-SVGF's gradient samples (uploaded only then, when the frame
-  // has them).
+  // `gradient_into`: the method reads A-SVGF's gradient samples, uploaded (when the frame has
+  // them) into the 3 planes it lends there (memory it does not use until its gradient stage
+  // has read them: no planes of the backend's own); null: not wanted.
   FrameInputs inputs(const Frame& in, bool position = false, bool split = false,
-                     bool want_gradient = false) {
+                     float* gradient_into = nullptr) {
     const size_t n = pixels();
     float* staging = staging_in_.get();
     auto stage = [&](const float* src, int plane) {
@@ -159,12 +161,12 @@ class CudaBackend {
     const bool emission = !in.emission.empty();
     if (emission)
       for (int c = 0; c < 3; ++c) stage(in.emission.plane(c), kEmission + c);
-    const bool gradient = want_gradient && !in.gradient.empty();
+    const bool gradient = gradient_into != nullptr && !in.gradient.empty();
     if (gradient)
       for (int c = 0; c < 3; ++c) stage(in.gradient.plane(c), kGradient + c);
-    // The optional planes come last: the upload stops after the last one the frame has (a
-    // frame with gradient samples but no emission sends the unused emission planes along).
-    const int planes = gradient ? kInputPlanes : (emission ? kGradient : kRequiredPlanes);
+    // The optional emission comes last in the shading buffer: the upload stops after the last
+    // plane the frame has.
+    const int planes = emission ? kGradient : kRequiredPlanes;
     if (position) {
       ensure_position();
       staging_position_.resize(3 * n, "the pinned position staging buffer");
@@ -183,16 +185,21 @@ class CudaBackend {
     guides_[slot_].upload_async(staging, kKeptPlanes * n, engine_.stream());
     shading_.upload_async(staging + kKeptPlanes * n, (planes - kKeptPlanes) * n,
                           engine_.stream());
+    if (gradient)
+      SVGF_CUDA_CHECK(cudaMemcpyAsync(gradient_into, staging + kGradient * n,
+                                      3 * n * sizeof(float), cudaMemcpyHostToDevice,
+                                      engine_.stream()),
+                      "upload of the gradient samples");
     if (position) position_.upload_async(staging_position_.get(), 3 * n, engine_.stream());
     if (split) split_.upload_async(staging_split_.get(), 6 * n, engine_.stream());
-    return landed_inputs(emission, gradient, position, split);
+    return landed_inputs(emission, gradient ? gradient_into : nullptr, position, split);
   }
 
   // The device path: every channel of the caller's frame copied into the same planes as an
   // upload's, in one launch on the caller's stream (timed as copy_in); the caller's buffers
   // are only read.
   FrameInputs inputs(const DeviceFrame& in, bool position = false, bool split = false,
-                     bool want_gradient = false) {
+                     float* gradient_into = nullptr) {
     if (position) ensure_position();
     if (split) ensure_split();
     StridedCopy copy;
@@ -213,15 +220,16 @@ class CudaBackend {
     add(in.albedo, 3, input(kAlbedo));
     const bool emission = !in.emission.empty();
     if (emission) add(in.emission, 3, input(kEmission));
-    const bool gradient = want_gradient && !in.gradient.empty();
-    if (gradient) add(in.gradient, 3, input(kGradient));
+    const bool gradient = gradient_into != nullptr && !in.gradient.empty();
+    const size_t n = pixels();
+    if (gradient) add(in.gradient, 3, [gradient_into, n](int c) { return gradient_into + c * n; });
     if (position) add(in.position, 3, [this](int c) { return plane(position_, c); });
     if (split) {
       add(in.direct, 3, [this](int c) { return plane(split_, c); });
       add(in.indirect, 3, [this](int c) { return plane(split_, 3 + c); });
     }
     engine_.run(kCopyInStage, copy, width_, height_);
-    return landed_inputs(emission, gradient, position, split);
+    return landed_inputs(emission, gradient ? gradient_into : nullptr, position, split);
   }
 
   // The previous frame's depth, normal and mesh id: what the methods read of it (SVGF's
@@ -270,7 +278,8 @@ class CudaBackend {
   }
 
   // The frame's inputs in the backend's planes, sanitized: what both paths hand the method.
-  FrameInputs landed_inputs(bool emission, bool gradient, bool position, bool split) {
+  // `gradient`: where the gradient samples landed (null: none).
+  FrameInputs landed_inputs(bool emission, const float* gradient, bool position, bool split) {
     FrameInputs f;
     f.guides = current_guides();
     f.color = input_rgb(kColor);
@@ -278,9 +287,9 @@ class CudaBackend {
     if (emission) f.emission = input_rgb(kEmission);
     if (position) f.position = rgb(position_, 0);
     if (gradient) {
-      f.gradient.previous = input_plane(kGradient);
-      f.gradient.current = input_plane(kGradient + 1);
-      f.gradient.mask = input_plane(kGradient + 2);
+      f.gradient.previous = gradient;
+      f.gradient.current = gradient + pixels();
+      f.gradient.mask = gradient + 2 * pixels();
     }
     if (split) {
       f.direct = rgb(split_, 0);
@@ -347,7 +356,8 @@ class CudaBackend {
   // Planes of one frame's upload, in order; mesh_id travels as raw 32-bit words. The guides
   // the next frame reads come first (planes 0 to 4, the slot of guides_ that is this frame's:
   // previous_guides()); the optional emission and gradient samples come last, so a frame
-  // without them uploads kRequiredPlanes only.
+  // without them uploads kRequiredPlanes only. The gradient samples are staged here but land
+  // in the planes the method lends (inputs()' gradient_into), not in shading_.
   enum InputPlane : int {
     kDepth = 0,
     kNormal = 1,    // 3
@@ -362,7 +372,8 @@ class CudaBackend {
     kRequiredPlanes = 15,
     kEmission = 15,  // 3, optional
     kGradient = 18,  // 3, optional: A-SVGF's previous, current luminance and mask
-    kInputPlanes = 21
+    kInputPlanes = 21,
+    kShadingPlanes = kGradient - kKeptPlanes  // shading_: depth gradient to emission
   };
 
   static LaunchShape checked_shape(const EngineConfig& config) {
@@ -410,8 +421,8 @@ class CudaBackend {
   int method_planes_ = 0;
   // The depth, normal and mesh id of this frame and the previous one (the methods read those
   // of the previous frame through previous_guides(), nothing else of it), and this frame's
-  // other inputs once: 2 x 5 + 16 planes instead of 2 x 21 (docs/benchmarks.md, "Where the
-  // 618 MiB go").
+  // other inputs once but for the gradient samples (in the method's lent planes): 2 x 5 + 13
+  // planes instead of 2 x 21 (docs/benchmarks.md, "Where the 618 MiB go").
   Buffer guides_[2], shading_, output_, position_, split_;
   PinnedBuffer<float> staging_in_, staging_out_, staging_position_, staging_split_;
   HostStaging host_copies_;

@@ -74,7 +74,12 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
     if (split != split_history_) has_history_ = false;
     auto& engine = backend_.engine();
     backend_.begin_frame(in, out);
-    const FrameInputs cur = backend_.inputs(in, /*position=*/false, split, gradient_mode());
+    // The gradient samples land in the illumination's planes (a backend that copies them; the
+    // CPU reads them in place): the gradient stages read them before the demodulation writes
+    // the illumination (run_svgf_frame, methods/svgf/pipeline.h), so they need no planes of
+    // their own.
+    float* gradient_into = gradient_mode() ? backend_.plane(illumination_, 0) : nullptr;
+    const FrameInputs cur = backend_.inputs(in, /*position=*/false, split, gradient_into);
 
     SvgfFrameBuffers b = signal_buffers(cur, 0, backend_.output(out));
     // The depth the reprojection compares: where the camera moved, the previous camera's.
