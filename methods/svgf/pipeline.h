@@ -317,7 +317,9 @@ void run_svgf_frame(Engine& engine, const SvgfFrameBuffers& b, const SvgfParams&
   const int h = b.guides.height;
 
   // 0. A-SVGF: the temporal gradients of the frame's re-shaded samples -> lambda per stratum.
-  //    Without samples the reprojection falls back to the statistics anti-lag.
+  //    Without samples the reprojection falls back to the statistics anti-lag. The samples may
+  //    lie in the illumination's planes (the denoiser lends them to a backend that copies its
+  //    inputs): these stages run before the demodulation writes the illumination.
   const bool gradient = runs_gradient_stages(b, p, has_history);
   if (gradient) run_gradient_stages(engine, b, p);
   const float* lambda = gradient ? b.gradient_lambda() : nullptr;
