@@ -181,7 +181,8 @@ class CudaBackend {
     host_copies_.run();
     engine_.mark(kUploadStage);
     // The guides the next frame reads go to this frame's slot, the rest to the one shading
-    // buffer (two transfers from one staging buffer).
+    // buffer, the gradient samples to the planes the method lent (transfers from one staging
+    // buffer).
     guides_[slot_].upload_async(staging, kKeptPlanes * n, engine_.stream());
     shading_.upload_async(staging + kKeptPlanes * n, (planes - kKeptPlanes) * n,
                           engine_.stream());
