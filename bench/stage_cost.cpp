@@ -33,23 +33,23 @@ double unit_share(double v) { return v < 0 ? 0 : (v > 1 ? 1 : v); }
 constexpr int kGridTaps = 24;
 
 // det_exp_nonpositive (core/det_math.h): clamp 1, k = floor(x log2e + 1/2) 3, Cody-Waite r 4,
-// r^2 1, polynomial 10, y 3, 2^(k+64)'s exponent field from k 2 (an add, a shift), two scale
-// products 2: 26. Counted as 25, as before that form (it had k's integer conversion and the
-// shifts of a split 2^k, 31 instructions in all), so that the floors stay comparable; the floor
-// is the stricter for it.
-constexpr double kDetExp = 25;
+// r^2 1, polynomial 8 (det_exp_poly's four Horner steps; five with Cephes' polynomial before
+// 2026-12-02), y 3, 2^(k+64)'s exponent field from k 2 (an add, a shift), two scale products 2:
+// 24. (Counted as 25 until the polynomial lost its step, when it was 26: so that the floors
+// stayed comparable with the form before, which had 31.)
+constexpr double kDetExp = 24;
 // FastArith's exp (core/arith.h): the scale by log2 e and ex2.approx.
 constexpr double kFastExp = 2;
 
 // --- exact mode (core/*.h) ----------------------------------------------------------------
 // edge_stopping_weight (edge_stopping.h) with phi_normal = 128: dot 5, max 1, seven squarings 7;
-// depth and luminance terms |a-b|/phi 3 + 3; two clamps and the sum 4; det_exp_nonpositive 25;
+// depth and luminance terms |a-b|/phi 3 + 3; two clamps and the sum 4; det_exp_nonpositive 24;
 // times the normal weight and the > 0 select 2.
-constexpr double kExactEdgeWeight = 13 + 6 + 4 + kDetExp + 2;  // 50
+constexpr double kExactEdgeWeight = 13 + 6 + 4 + kDetExp + 2;  // 49
 constexpr double kLuminance = 5;                          // 3 mul, 2 add
 // One a-trous tap: the tap's luminance, the weight, tap_distance (3 + sqrt) and phi_z * d 5,
 // the B3 product and times it 2, accumulation (weight 1, color 6, variance w*w*v + add 3) 10.
-constexpr double kExactAtrousTap = kLuminance + kExactEdgeWeight + 5 + 2 + 10;  // 72
+constexpr double kExactAtrousTap = kLuminance + kExactEdgeWeight + 5 + 2 + 10;  // 71
 // Per pixel and iteration, outside the 24 taps: 3x3 variance prefilter 9 x 4 + division 37;
 // phi_l 4; phi_z 5; centre luminance 5; centre terms 5; final normalization 5.
 constexpr double kExactAtrousCentre = 37 + 4 + 5 + 5 + 5 + 5;  // 61
@@ -73,7 +73,7 @@ constexpr double kVarianceSteady = 2;
 // variance.h's 7x7 estimate (rare_path), one tap: its luminance 5, the edge-stopping weight 50,
 // tap_depth_scale (2 conversions, 2 products, sum, sqrt, division, product) 8, the sums (weight
 // 1, color 3 mul + 3 add, moments 2 mul + 2 add) 11. The centre tap is one of the (2r + 1)^2.
-constexpr double kExactVarianceTap = kLuminance + kExactEdgeWeight + 8 + 11;  // 74
+constexpr double kExactVarianceTap = kLuminance + kExactEdgeWeight + 8 + 11;  // 73
 // Outside the taps: the history and surface tests 2, the centre's luminance 5,
 // inv_depth_tolerance (fwidth: 2 abs, max; the floor's max, product, division) 6, 1 / phi_l 1,
 // the weight's max 1, the five divisions by it 5, spatial_variance (m1^2, difference, max,
@@ -113,8 +113,8 @@ constexpr double kGradientSamplesNone = 9 + 1;
 // 6; the normalization (test, 2 divisions, 2 selects) 5. A stratum without data: the centre's
 // 7, nine weight tests, the normalization.
 constexpr int kGradientTaps = 8;
-constexpr double kGradientAtrousTap = 1 + 8 + kExactEdgeWeight + 5;  // 64
-constexpr double kGradientAtrousStratum = 7 + kGradientTaps * kGradientAtrousTap + 6 + 5;  // 530
+constexpr double kGradientAtrousTap = 1 + 8 + kExactEdgeWeight + 5;  // 63
+constexpr double kGradientAtrousStratum = 7 + kGradientTaps * kGradientAtrousTap + 6 + 5;  // 522
 constexpr double kGradientAtrousNone = 7 + 9 + 5;
 // Lambda: the weight test, the normalizer test, |delta|, the division, the min 5; without data
 // the weight test. It is taken over the (2r + 1)^2 strata around (gradient_lambda_radius), each
@@ -497,10 +497,10 @@ StageCost blend(const StageCost& a, const StageCost& b, double surface_fraction)
 //     plane: position difference 3, length (dot 5 + sqrt) 6, len > 0 1, dot 5, division 1,
 //       d^2 times its scale 2 (18);
 //     the sum of the three 2;
-//   jbf_weight: d2 times the coordinate scale plus the exponent 2, 0 - e 1, det_exp 25, the
-//     max with 0 1 (29);
+//   jbf_weight: d2 times the coordinate scale plus the exponent 2, 0 - e 1, det_exp 24, the
+//     max with 0 1 (28);
 //   accumulation: weight 1, color 3 mul + 3 add 6 (7).
-constexpr double kJbfExactTap = 1 + 1 + 55 + 29 + 7;  // 93
+constexpr double kJbfExactTap = 1 + 1 + 55 + 28 + 7;  // 92
 // Fast mode (FastArith) changes the exponential, the color accumulation (3 FMA) and the four
 // dot products (3 FMA-counted instructions instead of 5: 8 fewer); its division is a reciprocal
 // and a product (1 more); its square roots are one instruction, as counted above.
@@ -517,10 +517,10 @@ constexpr double kJbfFastCentre = 1 + 3 + 4;
 // --- the wavelet filter (methods/wavelet/atrous.h) ----------------------------------------------
 // One tap, exact mode: depth term |Z_p - Z_q| / sigma 3, luma term 3, normal_cosine (dot 5,
 // saturate 2) 7, the normal power's squarings m (log2 sigma_N; another sigma_N is det_pow, one
-// special function), the two max 2, exp_neg_sum ((-a) - b 2, det_exp 25) 27, times the normal
+// special function), the two max 2, exp_neg_sum ((-a) - b 2, det_exp 24) 26, times the normal
 // weight 1, positive_part 2, times the binomial product 2 (each weight of the 7 and 9 taps
 // kernels is a division too: + 2), accumulation 7.
-constexpr double kWaveletExactTap = 3 + 3 + 7 + 2 + 2 + kDetExp + 1 + 2 + 2 + 7;  // 54 + m
+constexpr double kWaveletExactTap = 3 + 3 + 7 + 2 + 2 + kDetExp + 1 + 2 + 2 + 7;  // 53 + m
 // Fast: the dot 3 (mul + 2 FMA) with a free saturate, exp_neg_sum (add, scale, ex2) 3, no
 // positive_part, accumulation 1 + 3 FMA.
 constexpr double kWaveletFastTap = 3 + 3 + 3 + 2 + 3 + 1 + 2 + 4;  // 21 + m

@@ -61,10 +61,26 @@ SVGF_HD float sub_exact_product(float c, float a, float b) {
 #endif
 }
 
+// e^r for |r| <= ln2/2 (and a little beyond): 1 + r + r^2 P(r), P a degree-4 near-minimax
+// (Chebyshev) fit of (e^r - 1 - r) / r^2 on [-0.35, 0.35], coefficients rounded to float. Its
+// own error is below 1e-8 relatively (0.1 ulp); the float evaluation leaves det_exp within
+// 1.03 ulp of the exact exp over every float (Cephes' degree-5 P gave 0.99 for two operations
+// more; the same 2-ulp bound, tests/det_math_test.cpp). The exact a-trous takes one exp a tap,
+// so those two operations are two of a tap's instructions (82 on the GPU before).
+SVGF_HD float det_exp_poly(float r) {
+  const float r2 = r * r;
+  float p = 1.3926926767e-03f;
+  p = p * r + 8.3637740463e-03f;
+  p = p * r + 4.1666548699e-02f;
+  p = p * r + 1.6666573286e-01f;
+  p = p * r + 0.5f;
+  return (p * r2 + r) + 1.f;
+}
+
 // e^x = y 2^k for x clamped to [-104, 89]: Cody-Waite reduction x = k ln2 + r with |r| <= ln2/2
 // (ln2 split so k*ln2_hi is exact for |k| <= 255: ln2_hi has 15 significant bits, k 8, so the
-// GPU and the x86-64-v3/v4 kernels take x - k*ln2_hi as one FMA) and the Cephes expf minimax
-// polynomial for y = e^r. Straight-line code, so the CPU loops vectorize it.
+// GPU and the x86-64-v3/v4 kernels take x - k*ln2_hi as one FMA) and det_exp_poly for y = e^r.
+// Straight-line code, so the CPU loops vectorize it.
 struct ExpReduced {
   float y;  // e^r, in [0.7, 1.42]
   float k;  // integral, |k| <= 150
@@ -74,14 +90,7 @@ SVGF_HD ExpReduced det_exp_reduce(float xc) {
   // kernels are built with -fno-trapping-math; FRND on the GPU).
   const float k = floorf(xc * 1.44269504088896341f + 0.5f);
   const float r = sub_exact_product(xc, k, 0.693145751953125f) - k * 1.428606765330187e-06f;
-  const float r2 = r * r;
-  float p = 1.9875691500e-4f;
-  p = p * r + 1.3981999507e-3f;
-  p = p * r + 8.3334519073e-3f;
-  p = p * r + 4.1665795894e-2f;
-  p = p * r + 1.6666665459e-1f;
-  p = p * r + 5.0000001201e-1f;
-  return ExpReduced{(p * r2 + r) + 1.f, k};
+  return ExpReduced{det_exp_poly(r), k};
 }
 
 // exp(x) in float for x already clamped to [-104, 89]: 2^k applied as two exact power-of-two

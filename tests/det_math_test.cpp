@@ -124,19 +124,12 @@ float scale_pow2_split_at_half(float y, int k) {
 }
 
 // det_exp_clamped as it was before floorf and det_scale_pow2: k through truncation
-// (floor_small_int), 2^k split at k/2.
+// (floor_small_int), 2^k split at k/2 (the same polynomial).
 float det_exp_clamped_before(float xc) {
   const int ki = floor_small_int(xc * 1.44269504088896341f + 0.5f);
   const float k = static_cast<float>(ki);
   const float r = (xc - k * 0.693145751953125f) - k * 1.428606765330187e-06f;
-  const float r2 = r * r;
-  float p = 1.9875691500e-4f;
-  p = p * r + 1.3981999507e-3f;
-  p = p * r + 8.3334519073e-3f;
-  p = p * r + 4.1665795894e-2f;
-  p = p * r + 1.6666665459e-1f;
-  p = p * r + 5.0000001201e-1f;
-  return scale_pow2_split_at_half((p * r2 + r) + 1.f, ki);
+  return scale_pow2_split_at_half(det_exp_poly(r), ki);
 }
 
 }  // namespace
