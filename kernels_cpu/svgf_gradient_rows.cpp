@@ -98,11 +98,12 @@ void gradient_atrous_row(const GradientAtrousKernel& k, const StrataGuides& g, i
   for (int sx = x1; sx < sw; ++sx) k(sx, sy);
 }
 
-// Stratum row sy's own lambdas (GradientLambdaKernel::lambda_of), at own[0..sw).
+// Stratum row sy's own lambdas (stratum_lambda, as GradientLambdaKernel::lambda_of), at
+// own[0..sw).
 SVGF_TAP_LOOP void own_lambdas(const float* __restrict delta, const float* __restrict normalizer,
                                const float* __restrict weight, float* __restrict own, int sw) {
   for (int sx = 0; sx < sw; ++sx)
-    own[sx] = weight[sx] > 0.f ? gradient_lambda(delta[sx], normalizer[sx]) : 0.f;
+    own[sx] = stratum_lambda(weight[sx], delta[sx], normalizer[sx]);
 }
 
 // out[x] = max_f(out[x], tap[x]) for x in 0..n: one neighbour of a row of strata, in order.

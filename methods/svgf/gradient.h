@@ -76,20 +76,29 @@ struct GradientSamplesKernel {
     const int x0 = sx * kGradientStratum, y0 = sy * kGradientStratum;
     const int xc = min_i(x0 + 1, width - 1), yc = min_i(y0 + 1, height - 1);
     int guide = (yc - y0) * kGradientStratum + (xc - x0);
-    float delta = 0.f, normalizer = 0.f, weight = 0.f;
-    for (int k = 0; k < kGradientStratum * kGradientStratum; ++k) {
+    // The first masked pixel in raster order: the nine masks are loaded before any is tested
+    // (a partial stratum's missing pixels read the clamped centre's and count as unmasked), so
+    // the GPU issues them together instead of one after the other's test; then the sample.
+    int first = -1;
+#if defined(__CUDA_ARCH__)
+#pragma unroll
+#endif
+    for (int k = kGradientStratum * kGradientStratum - 1; k >= 0; --k) {
       const int x = x0 + k % kGradientStratum, y = y0 + k / kGradientStratum;
-      if (x >= width || y >= height) continue;
-      const int i = y * width + x;
-      if (!(samples.mask[i] > 0.5f)) continue;
-      guide = k;
+      const bool inside = x < width && y < height;
+      const float mask = samples.mask[inside ? y * width + x : yc * width + xc];
+      if (inside && mask > 0.5f) first = k;
+    }
+    float delta = 0.f, normalizer = 0.f, weight = 0.f;
+    if (first >= 0) {
+      guide = first;
+      const int i = (y0 + first / kGradientStratum) * width + x0 + first % kGradientStratum;
       const float previous = samples.previous[i], current = samples.current[i];
       if (radiance_ok(previous) && radiance_ok(current)) {  // NaN, Inf, negative: no data
         delta = current - previous;
         normalizer = max_f(current, previous);
         weight = 1.f;
       }
-      break;
     }
     const int s = sy * strata_width + sx;
     out.delta[s] = delta;
@@ -150,23 +159,37 @@ struct GradientAtrousKernel {
         inv_depth_tolerance<ExactArith>(phi_depth, guides.depth_fwidth(p), depth_gradient_floor);
     const InvTapDistances distances = inv_tap_distances();
     float weight_sum = 0.f, delta = 0.f, normalizer = 0.f;
+    // Each tap's loads come before its tests, from a valid stratum (the centre's where the tap
+    // is outside): a tap that `continue`d before its loads made the GPU wait for one tap's
+    // chain of loads (weight, guide offset, guides) before it started the next's; unrolled,
+    // the nine taps' loads are issued together. The arithmetic and its order are unchanged.
+#if defined(__CUDA_ARCH__)
+#pragma unroll
+#endif
     for (int dy = -1; dy <= 1; ++dy) {
+#if defined(__CUDA_ARCH__)
+#pragma unroll
+#endif
       for (int dx = -1; dx <= 1; ++dx) {
-        const int qx = sx + dx * step, qy = sy + dy * step;
-        if (qx < 0 || qy < 0 || qx >= at.strata_width || qy >= strata_height) continue;
+        const int tx = sx + dx * step, ty = sy + dy * step;
+        const bool inside = tx >= 0 && ty >= 0 && tx < at.strata_width && ty < strata_height;
+        const int qx = inside ? tx : sx, qy = inside ? ty : sy;
         const int q = qy * at.strata_width + qx;
-        if (!(in.weight[q] > 0.f)) continue;
+        const float q_weight = in.weight[q], q_delta = in.delta[q],
+                    q_normalizer = in.normalizer[q];
+        const int pq = at.pixel(qx, qy);
+        const uint32_t q_mesh = guides.mesh_id[pq];
+        const EdgeSample e{guides.depth[pq], guides.normal.load(pq), 0.f};
+        if (!inside || !(q_weight > 0.f)) continue;
         float w = 1.f;
         if (dx != 0 || dy != 0) {
-          const int pq = at.pixel(qx, qy);
-          if (guides.mesh_id[pq] != mesh) continue;
-          const EdgeSample e{guides.depth[pq], guides.normal.load(pq), 0.f};
+          if (q_mesh != mesh) continue;
           w = edge_stopping_weight<ExactArith>(c, e, distances.depth_scale(inv_phi_z, dx, dy),
                                                power, 0.f);
         }
         weight_sum = weight_sum + w;
-        delta = delta + in.delta[q] * w;
-        normalizer = normalizer + in.normalizer[q] * w;
+        delta = delta + q_delta * w;
+        normalizer = normalizer + q_normalizer * w;
       }
     }
     const bool any = weight_sum > 0.f;
@@ -181,6 +204,15 @@ SVGF_HD float gradient_lambda(float delta, float normalizer) {
   return normalizer > 0.f ? min_f(1.f, abs_f(delta) / normalizer) : 0.f;
 }
 
+// A stratum's own lambda, 0 without data (weight 0). A select, not a branch around the
+// division: the CPU rows vectorize it, and the GPU issues the three loads together (a branch
+// made each neighbour of the lambda stage a chain of two dependent loads). The planes hold 0
+// where the weight is 0; the division's value there is dropped by the select either way.
+SVGF_HD float stratum_lambda(float weight, float delta, float normalizer) {
+  const float own = gradient_lambda(delta, normalizer);
+  return weight > 0.f ? own : 0.f;
+}
+
 // Stage 3, per stratum: the largest lambda of the strata within `radius` (a change seen by a
 // neighbouring stratum's one sample also restarts this stratum's pixels: a moving shadow's edge
 // crosses strata whose sample it missed). Max is exact in any order.
@@ -191,12 +223,32 @@ struct GradientLambdaKernel {
   int strata_height = 0;
   int radius = 0;
   SVGF_HD float lambda_of(int s) const {
-    return in.weight[s] > 0.f ? gradient_lambda(in.delta[s], in.normalizer[s]) : 0.f;
+    return stratum_lambda(in.weight[s], in.delta[s], in.normalizer[s]);
   }
   SVGF_HD void operator()(int sx, int sy) const {
+    // The default radius as a compile-time loop: the GPU then issues the nine neighbours' loads
+    // together instead of one neighbour's after the other's.
+    if (radius == 1)
+      largest<1>(sx, sy);
+    else
+      largest<0>(sx, sy);
+  }
+
+ private:
+  // kRadius > 0: the radius, known at compile time; 0: `radius`. The neighbours in one order
+  // (the centre, then dy outer, dx inner): max_f keeps a NaN only as its second operand.
+  template <int kRadius>
+  SVGF_HD void largest(int sx, int sy) const {
+    const int r = kRadius > 0 ? kRadius : radius;
     float l = lambda_of(sy * strata_width + sx);
-    for (int dy = -radius; dy <= radius; ++dy)
-      for (int dx = -radius; dx <= radius; ++dx) {
+#if defined(__CUDA_ARCH__)
+#pragma unroll
+#endif
+    for (int dy = -r; dy <= r; ++dy)
+#if defined(__CUDA_ARCH__)
+#pragma unroll
+#endif
+      for (int dx = -r; dx <= r; ++dx) {
         const int qx = sx + dx, qy = sy + dy;
         if (qx < 0 || qy < 0 || qx >= strata_width || qy >= strata_height) continue;
         l = max_f(l, lambda_of(qy * strata_width + qx));
