@@ -34,13 +34,13 @@ struct ExactArith {
   template <class K = LiteralConstant>
   SVGF_HD static float saturate(float a) { return min_f(K::of(1.f), max_f(K::of(0.f), a)); }
   template <class K = LiteralConstant>
-  SVGF_HD static float exp_nonpositive(float x) { return det_exp_nonpositive<K>(x); }
+  SVGF_HD_INLINE static float exp_nonpositive(float x) { return det_exp_nonpositive<K>(x); }
   // exp(-(a + b)) for a, b >= 0, evaluated as exp((-a) - b). It was exp((0 - a) - b): the two
   // differ only in the sign of a zero argument (a = b = +0), whose exp is 1 either way, so the
   // bits are the same (tests/det_math_test.cpp), and on the GPU the negation is an operand's
   // modifier, one add a tap fewer.
   template <class K = LiteralConstant>
-  SVGF_HD static float exp_neg_sum(float a, float b) {
+  SVGF_HD_INLINE static float exp_neg_sum(float a, float b) {
     return det_exp_nonpositive<K>(-a - b);
   }
   SVGF_HD static float pow(float x, float y) { return det_pow(x, y); }

@@ -41,7 +41,7 @@ SVGF_HD float det_scale_pow2(float y, int k) {
 // k + 191 in [41, 191] in its low mantissa bits (its bits are 0x4B400000 + k + 191); shifted
 // left by 23, everything above those bits falls out and k + 191 becomes the exponent field.
 // tests/det_math_test.cpp checks it against det_scale_pow2 for every k and many y.
-SVGF_HD float det_scale_pow2_nonpositive(float y, float k) {
+SVGF_HD_INLINE float det_scale_pow2_nonpositive(float y, float k) {
   const uint32_t field = float_bits(k + 12583103.f) << 23;  // 12583103 = 1.5 2^23 + 191
   return (y * bits_float(field)) * 5.42101086242752217e-20f;  // 2^-64
 }
@@ -51,7 +51,7 @@ SVGF_HD float det_scale_pow2_nonpositive(float y, float k) {
 // one rounding is then the rounding of the separate difference, so the bits are the same
 // everywhere (tests/det_math_test.cpp). Not a contraction: a product that rounds must not come
 // here.
-SVGF_HD float sub_exact_product(float c, float a, float b) {
+SVGF_HD_INLINE float sub_exact_product(float c, float a, float b) {
 #if defined(__CUDA_ARCH__)
   return __fmaf_rn(-a, b, c);
 #elif defined(__FMA__)
@@ -67,7 +67,7 @@ SVGF_HD float sub_exact_product(float c, float a, float b) {
 // 1.03 ulp of the exact exp over every float (Cephes' degree-5 P gave 0.99 for two operations
 // more; the same 2-ulp bound, tests/det_math_test.cpp). The exact a-trous takes one exp a tap,
 // so those two operations are two of a tap's instructions (82 on the GPU before).
-SVGF_HD float det_exp_poly(float r) {
+SVGF_HD_INLINE float det_exp_poly(float r) {
   const float r2 = r * r;
   float p = 1.3926926767e-03f;
   p = p * r + 8.3637740463e-03f;
@@ -85,7 +85,7 @@ struct ExpReduced {
   float y;  // e^r, in [0.7, 1.42]
   float k;  // integral, |k| <= 150
 };
-SVGF_HD ExpReduced det_exp_reduce(float xc) {
+SVGF_HD_INLINE ExpReduced det_exp_reduce(float xc) {
   // k = floor(x log2e + 1/2): floorf is one rounding instruction (roundps, vrndscaleps: the CPU
   // kernels are built with -fno-trapping-math; FRND on the GPU).
   const float k = floorf(xc * 1.44269504088896341f + 0.5f);
@@ -113,7 +113,7 @@ SVGF_HD float det_exp(float x) {
 // x clamped to [-104, 0] makes k <= 0, so 2^k goes through det_scale_pow2_nonpositive (same
 // bits). K: how the clamp sees its constant (core/vec.h, LiteralConstant).
 template <class K = LiteralConstant>
-SVGF_HD float det_exp_nonpositive(float x) {
+SVGF_HD_INLINE float det_exp_nonpositive(float x) {
   const ExpReduced e = det_exp_reduce(max_f(x, K::of(-104.f)));
   return det_scale_pow2_nonpositive(e.y, e.k);
 }
