@@ -62,8 +62,8 @@ foreach(id ${VARIANTS})
   # The exp's parts and its ExactArith wrappers are inlined everywhere (core/hd.h,
   # SVGF_HD_INLINE): an out-of-line copy is a call inside a tap loop, which GCC then leaves
   # scalar (the gradient a-trous row ran 4x slower so, with a copy of exp_neg_sum).
-  string(REGEX MATCHALL "\n[0-9a-f]+ [tTwW] [^\n]*(det_exp_reduce|det_exp_poly|exp_nonpositive|exp_neg_sum)[^\n]*"
-         outlined "${all}")
+  set(exp_parts "det_exp_reduce|det_exp_poly|exp_nonpositive|exp_neg_sum")
+  string(REGEX MATCHALL "\n[0-9a-f]+ [tTwW] [^\n]*(${exp_parts})[^\n]*" outlined "${all}")
   if(outlined)
     string(REPLACE "\n" "" outlined "${outlined}")
     list(APPEND failures "${object}: the exp out of line, a call in the vector loops:${outlined}")
