@@ -159,37 +159,23 @@ struct GradientAtrousKernel {
         inv_depth_tolerance<ExactArith>(phi_depth, guides.depth_fwidth(p), depth_gradient_floor);
     const InvTapDistances distances = inv_tap_distances();
     float weight_sum = 0.f, delta = 0.f, normalizer = 0.f;
-    // Each tap's loads come before its tests, from a valid stratum (the centre's where the tap
-    // is outside): a tap that `continue`d before its loads made the GPU wait for one tap's
-    // chain of loads (weight, guide offset, guides) before it started the next's; unrolled,
-    // the nine taps' loads are issued together. The arithmetic and its order are unchanged.
-#if defined(__CUDA_ARCH__)
-#pragma unroll
-#endif
     for (int dy = -1; dy <= 1; ++dy) {
-#if defined(__CUDA_ARCH__)
-#pragma unroll
-#endif
       for (int dx = -1; dx <= 1; ++dx) {
-        const int tx = sx + dx * step, ty = sy + dy * step;
-        const bool inside = tx >= 0 && ty >= 0 && tx < at.strata_width && ty < strata_height;
-        const int qx = inside ? tx : sx, qy = inside ? ty : sy;
+        const int qx = sx + dx * step, qy = sy + dy * step;
+        if (qx < 0 || qy < 0 || qx >= at.strata_width || qy >= strata_height) continue;
         const int q = qy * at.strata_width + qx;
-        const float q_weight = in.weight[q], q_delta = in.delta[q],
-                    q_normalizer = in.normalizer[q];
-        const int pq = at.pixel(qx, qy);
-        const uint32_t q_mesh = guides.mesh_id[pq];
-        const EdgeSample e{guides.depth[pq], guides.normal.load(pq), 0.f};
-        if (!inside || !(q_weight > 0.f)) continue;
+        if (!(in.weight[q] > 0.f)) continue;
         float w = 1.f;
         if (dx != 0 || dy != 0) {
-          if (q_mesh != mesh) continue;
+          const int pq = at.pixel(qx, qy);
+          if (guides.mesh_id[pq] != mesh) continue;
+          const EdgeSample e{guides.depth[pq], guides.normal.load(pq), 0.f};
           w = edge_stopping_weight<ExactArith>(c, e, distances.depth_scale(inv_phi_z, dx, dy),
                                                power, 0.f);
         }
         weight_sum = weight_sum + w;
-        delta = delta + q_delta * w;
-        normalizer = normalizer + q_normalizer * w;
+        delta = delta + in.delta[q] * w;
+        normalizer = normalizer + in.normalizer[q] * w;
       }
     }
     const bool any = weight_sum > 0.f;
