@@ -20,6 +20,7 @@
 #include "core/normal_weight.h"
 #include "methods/bmfr/denoiser.h"
 #include "methods/jbf/denoiser.h"
+#include "methods/svgf/gradient_tile.h"
 #include "methods/wavelet/denoiser.h"
 
 namespace svgf::bench {
@@ -304,6 +305,35 @@ StageCost shared_cost(Stage stage, const SvgfParams& p, const FrameTraits& f, bo
   return c;
 }
 
+// A-SVGF's three stages as one block kernel over tiles of strata (methods/svgf/gradient_tile.h:
+// fast mode and CUDA's exact mode, where the filter is the default's size), timed and counted as
+// Gradient: the three stages' operations, and of their bytes only what leaves or enters the
+// block: the samples' reads, each stratum's guide pixel (depth, depth dx/dy 2, normal 3, mesh
+// id) when a step filters, the lambda written. The halo the tiles compute twice is not counted
+// (the floor is the work, not the tiling's overlap).
+bool gradient_fused(Mode mode, const SvgfParams& p, const FrameTraits& f) {
+  return (mode == Mode::Fast || f.packed_exact) &&
+         GradientTileKernel::handles(p.gradient_iterations, p.gradient_lambda_radius);
+}
+StageCost fused_gradient_cost(Stage stage, const SvgfParams& p, const FrameTraits& f,
+                              bool surface) {
+  StageCost c;
+  if (stage != Stage::Gradient || !gradient_runs(p, f)) return c;
+  const double r = strata_per_px(f.width, f.height);
+  for (Stage s : {Stage::Gradient, Stage::GradientAtrous, Stage::GradientLambda}) {
+    const StageCost part = shared_cost(s, p, f, surface);
+    c.ops += part.ops;
+    c.taps += part.taps;
+  }
+  const bool steps = p.gradient_iterations > 0;
+  c.read = ((9 + (surface ? 2 : 0)) + (steps && surface ? 7 : 0)) * r * kFloat;
+  c.written = r * kFloat;
+  c.planes = std::string("per stratum R mask at its 9 pixels, previous and current at the sample") +
+             (steps ? ", its guide pixel's depth, depth dx/dy 2, normal 3, mesh id" : "") +
+             "; W lambda (the samples and filtered strata stay in the block)";
+  return c;
+}
+
 // Demodulate + reproject + guide packing in one kernel (fast mode, and CUDA's exact mode:
 // kFusedReprojection in methods/svgf/flavors.h), timed and counted as Demodulate. The
 // illumination comes back from the thread's own write. Background pixels read depth and normal
@@ -465,6 +495,8 @@ StageCost pixel_cost(Mode mode, Stage stage, const SvgfParams& p, const FrameTra
     case Stage::Gradient:
     case Stage::GradientAtrous:
     case Stage::GradientLambda:
+      if (gradient_fused(mode, p, f)) return fused_gradient_cost(stage, p, f, surface);
+      return shared_cost(stage, p, f, surface);
     case Stage::SplitSum:
     case Stage::Taa:
       return shared_cost(stage, p, f, surface);

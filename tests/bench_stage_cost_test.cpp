@@ -734,14 +734,40 @@ TEST_CASE("stage cost: a stage the configuration does not run costs nothing",
     f.gradient_samples = true;
     return f;
   }();
+  bench::FrameTraits packed = samples;  // CUDA's exact mode
+  packed.packed_exact = true;
   for (Mode mode : {Mode::Exact, Mode::Fast}) {
     for (Stage s : {Stage::Gradient, Stage::GradientAtrous, Stage::GradientLambda}) {
       CHECK(bench::stage_cost(mode, s, defaults, samples).bytes() == 0);
       CHECK(bench::stage_cost(mode, s, gradient, plain).bytes() == 0);  // no samples
-      CHECK(bench::stage_cost(mode, s, gradient, samples).bytes() > 0);
+      // Three passes on the CPU; on CUDA (fast mode, packed exact) one launch under Gradient
+      // (methods/svgf/gradient_tile.h).
+      const bool fused = mode == Mode::Fast;
+      CHECK((bench::stage_cost(mode, s, gradient, samples).bytes() > 0) ==
+            (!fused || s == Stage::Gradient));
     }
     CHECK(bench::stage_cost(mode, Stage::Taa, defaults, plain).bytes() == 0);
     CHECK(bench::stage_cost(mode, Stage::SplitSum, defaults, plain).bytes() == 0);
+  }
+  // The fused launch: the three stages' operations and taps, the samples' and guides' reads,
+  // lambda written; none of the stratum planes between them.
+  {
+    double ops = 0, taps = 0;
+    for (Stage s : {Stage::Gradient, Stage::GradientAtrous, Stage::GradientLambda}) {
+      ops += bench::stage_cost(Mode::Exact, s, gradient, samples).ops;
+      taps += bench::stage_cost(Mode::Exact, s, gradient, samples).taps;
+    }
+    const bench::StageCost fused = bench::stage_cost(Mode::Exact, Stage::Gradient, gradient, packed);
+    CHECK(fused.ops == Approx(ops));
+    CHECK(fused.taps == Approx(taps));
+    CHECK(fused.read == Approx((9 + 2 + 7) * 4.0 / 9));
+    CHECK(fused.written == Approx(4.0 / 9));
+    CHECK(bench::stage_cost(Mode::Exact, Stage::GradientAtrous, gradient, packed).bytes() == 0);
+    CHECK(bench::stage_cost(Mode::Exact, Stage::GradientLambda, gradient, packed).bytes() == 0);
+    // A filter the fused launch does not take: three passes again.
+    SvgfParams wide = gradient;
+    wide.gradient_iterations = 3;
+    CHECK(bench::stage_cost(Mode::Exact, Stage::GradientAtrous, wide, packed).bytes() > 0);
   }
   // At 1080p the strata are a ninth of the pixels; the a-trous counts 8 taps a stratum and step.
   CHECK(bench::strata_per_px(1920, 1080) == Approx(1.0 / 9));

@@ -368,6 +368,11 @@ class MirrorEngine {
   void run_counting(const char* stage, const K& kernel, int w, int h) {
     run(stage, kernel, w, h);
   }
+  template <class K>
+  void run_blocks(const char* stage, const K& kernel, int blocks) {
+    check_block_stage(arena_, kernel, blocks,
+                      where_ + ", stage " + stage + " #" + std::to_string(++calls_[stage]));
+  }
 
  private:
   Arena& arena_;

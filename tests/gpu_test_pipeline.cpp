@@ -129,6 +129,11 @@ TEST_CASE("pipeline: CPU vs CUDA exact bitwise over whole sequences; fast within
   split.split = SplitMode::On;
   split.indirect_iterations = 5;
   split.indirect_phi_color = 20.f;
+  // A-SVGF's filter beyond what the CUDA flavors' fused launch takes (methods/svgf/
+  // gradient_tile.h): its three passes on CUDA too.
+  SvgfParams wide_gradient;
+  wide_gradient.gradient_iterations = 3;
+  wide_gradient.gradient_lambda_radius = 2;
   struct Setting {
     std::string name;
     SvgfParams params;
@@ -138,6 +143,7 @@ TEST_CASE("pipeline: CPU vs CUDA exact bitwise over whole sequences; fast within
                               {"falcor", svgf_preset("falcor"), false},
                               {"converge + statistics antilag", converge, false},
                               {"defaults + taa", taa, true},
+                              {"gradient, 3 steps, lambda radius 2", wide_gradient, true},
                               {"split", split, false}};
   for (const auto& [setting, params, needs_gradients] : settings)
   for (const Source& src : sources()) {

@@ -121,4 +121,15 @@ void check_stage(Arena& arena, const K& kernel, const std::string& what,
   tally().stage_values += runner.values_compared();
 }
 
+// check_stage for a block kernel (core/block_reduce.h) over `blocks` blocks.
+template <class K>
+void check_block_stage(Arena& arena, const K& kernel, int blocks, const std::string& what) {
+  test::StageRunner runner(test::kCudaExact);
+  runner.words(arena.host().data(), arena.planes_used(), arena.width(), arena.height(),
+               arena.plane_names());
+  runner.run_blocks(runner.on_device(kernel), blocks, what);
+  tally().stage_runs += 1;
+  tally().stage_values += runner.values_compared();
+}
+
 }  // namespace svgf::gpu_test

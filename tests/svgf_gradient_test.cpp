@@ -2,11 +2,13 @@
 // every backend (tests/test_device.h). Fast mode runs these exact kernels: CPU and CUDA exact.
 #include <cmath>
 #include <limits>
+#include <random>
 #include <utility>
 
 #include <catch2/catch.hpp>
 
 #include "methods/svgf/gradient.h"
+#include "methods/svgf/gradient_tile.h"
 #include "methods/svgf/reproject.h"
 #include "test_device.h"
 #include "test_support.h"
@@ -278,7 +280,113 @@ void reprojection_follows_lambda(const TestDevice& d) {
   REQUIRE(all.history.at(2, 0, 0) == 11.f);
 }
 
+// A w x h frame for the fused stages: guides in patches of two meshes (strays of a third,
+// holes, NaN depth and normals), and gradient samples at about one pixel in six, so that strata
+// have none, one or several; some samples are not radiance (NaN, negative: no data).
+Frame random_gradient_frame(int w, int h, uint32_t seed) {
+  Frame f = test::flat_frame(w, h);
+  f.gradient = Image(w, h, 3);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  for (int i = 0; i < w * h; ++i) {
+    const int x = i % w, y = i / w;
+    const bool near = (x / 7 + y / 5) % 3 == 0;
+    const float odd = u(rng);
+    f.depth.plane(0)[i] = odd < 0.02f ? 0.f : (near ? 2.f + u(rng) * 0.05f : 5.f + u(rng));
+    f.depth_gradient.plane(0)[i] = u(rng) * 0.1f - 0.05f;
+    f.mesh_id[i] = odd > 0.97f ? 9u : (near ? 1u : 2u);
+    const float tilt = u(rng) * 0.6f - 0.3f, n = std::sqrt(1.f + tilt * tilt);
+    f.normal.plane(0)[i] = tilt / n;
+    f.normal.plane(1)[i] = 0.f;
+    f.normal.plane(2)[i] = 1.f / n;
+    if (odd > 0.02f && odd < 0.025f) f.depth.plane(0)[i] = std::nanf("");
+    if (odd > 0.03f && odd < 0.035f) f.normal.plane(1)[i] = std::nanf("");
+    if (u(rng) < 1.f / 6.f) {
+      const float previous = u(rng) * 2.f, current = u(rng) < 0.3f ? previous : u(rng) * 2.f;
+      f.gradient.at(x, y, 0) = odd > 0.5f && odd < 0.51f ? -1.f : previous;
+      f.gradient.at(x, y, 1) = odd > 0.6f && odd < 0.61f ? std::nanf("") : current;
+      f.gradient.at(x, y, 2) = 1.f;
+    }
+  }
+  return f;
+}
+
+// The three stages as three passes (the stratum planes) and as GradientTileKernel's one block
+// kernel give the same lambdas, bit for bit: sizes with partial strata, partial tiles, an image
+// narrower than a tile and one of several tiles each way; every setting the tile kernel takes.
+void tile_kernel_matches_the_stages(const TestDevice& d) {
+  const SvgfParams p;
+  for (const auto& size : {std::pair<int, int>{7, 5}, {61, 37}, {100, 151}, {197, 64}}) {
+    const int w = size.first, h = size.second;
+    const Frame f = random_gradient_frame(w, h, static_cast<uint32_t>(w * 1000 + h));
+    const int sw = strata_along(w), sh = strata_along(h);
+    for (int iterations : {0, 1})
+      for (int radius : {0, 1}) {
+        const std::string what = std::to_string(w) + "x" + std::to_string(h) + ", " +
+                                 std::to_string(iterations) + " step(s), radius " +
+                                 std::to_string(radius);
+        INFO(what);
+        Image signal(sw, sh, 3), filtered(sw, sh, 3), offset(sw, sh, 1);
+        Image three(sw, sh, 1, -1.f), fused(sw, sh, 1, -1.f);
+        test::StageRunner r(d);
+        run_samples(r, f, signal, offset);
+        GradientAtrousKernel a;
+        a.guides = r.guides(f);
+        a.at = StratumGuides{w, sw, r.plane(std::as_const(offset))};
+        a.strata_height = sh;
+        a.in = {r.plane(std::as_const(signal), 0), r.plane(std::as_const(signal), 1),
+                r.plane(std::as_const(signal), 2)};
+        a.out = {r.plane(filtered, 0), r.plane(filtered, 1), r.plane(filtered, 2)};
+        a.step = 1;
+        a.phi_depth = p.gradient_phi_depth;
+        a.phi_normal = p.gradient_phi_normal;
+        a.depth_gradient_floor = p.depth_gradient_floor;
+        if (iterations > 0) r.run(a, sw, sh, "gradient atrous");
+        const Image& last = iterations > 0 ? filtered : signal;
+        r.run(GradientLambdaKernel{sw,
+                                   {r.plane(last, 0), r.plane(last, 1), r.plane(last, 2)},
+                                   r.plane(three), sh, radius},
+              sw, sh, "gradient lambda");
+
+        GradientTileKernel t;
+        t.samples.width = w;
+        t.samples.height = h;
+        t.samples.samples = {r.plane(f.gradient, 0), r.plane(f.gradient, 1),
+                             r.plane(f.gradient, 2)};
+        t.samples.strata_width = sw;
+        t.atrous = a;
+        t.atrous.in = {};
+        t.atrous.out = {};
+        t.lambda = r.plane(fused);
+        t.iterations = iterations;
+        t.radius = radius;
+        t.strata_width = sw;
+        t.strata_height = sh;
+        REQUIRE(GradientTileKernel::handles(iterations, radius));
+        r.run_blocks(t, t.blocks(), "gradient tiles");
+        test::require_identical(fused, three, what + ": lambda, fused against three passes");
+        // Something to compare: lambdas strictly between 0 and 1 (and 0 where strata have no
+        // sample and nothing spreads it), none outside [0, 1].
+        int zero = 0, between = 0, one = 0;
+        for (size_t i = 0; i < fused.pixel_count(); ++i) {
+          const float l = fused.plane(0)[i];
+          zero += l == 0.f;
+          between += l > 0.f && l < 1.f;
+          one += l == 1.f;
+        }
+        if (w * h > 1000) {
+          CHECK(between > 0);
+          if (iterations == 0 && radius == 0) CHECK(zero > 0);  // strata without a sample
+        }
+        CHECK(zero + between + one == static_cast<int>(fused.pixel_count()));
+      }
+  }
+  REQUIRE_FALSE(GradientTileKernel::handles(2, 1));
+  REQUIRE_FALSE(GradientTileKernel::handles(1, 2));
+}
+
 }  // namespace
+
 
 SVGF_BACKEND_TEST("gradient: per-stratum samples of a hand-made 7x5 frame, and their lambda",
                   "[gradient]", samples_per_stratum)
@@ -286,3 +394,5 @@ SVGF_BACKEND_TEST("gradient: a-trous steps over the strata weigh by mesh, depth 
                   "[gradient]", atrous_known_answers)
 SVGF_BACKEND_TEST("gradient: the reprojection blends with alpha' = (1 - lambda) alpha + lambda",
                   "[gradient][reproject]", reprojection_follows_lambda)
+SVGF_BACKEND_TEST("gradient: the fused tile kernel gives the three stages' lambdas",
+                  "[gradient]", tile_kernel_matches_the_stages)

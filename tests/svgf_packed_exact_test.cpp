@@ -170,4 +170,15 @@ TEST_CASE("exact mode over packed storage: the same bits in every branch of the 
   SvgfParams gradient;
   gradient.antilag = Antilag::Gradient;
   require_same_bits(gradient, gradient_frames(frames), cut, "gradient anti-lag");
+  // The packed flavor fuses A-SVGF's stages where the filter is small enough (one step at most,
+  // a lambda radius of at most 1: methods/svgf/gradient_tile.h) and runs the three passes
+  // otherwise; the planes always run the three.
+  for (const auto& [steps, radius] : {std::pair<int, int>{0, 1}, {1, 0}, {2, 1}, {1, 2}}) {
+    SvgfParams g = gradient;
+    g.gradient_iterations = steps;
+    g.gradient_lambda_radius = radius;
+    require_same_bits(g, gradient_frames(frames), cut,
+                      "gradient anti-lag, " + std::to_string(steps) + " step(s), lambda radius " +
+                          std::to_string(radius));
+  }
 }

@@ -5,7 +5,7 @@
 // never a second copy of a formula; it also says which stages the pipeline fuses into one
 // launch (methods/svgf/pipeline.h): kFusedReprojection (demodulate + reproject + guide packing),
 // kFusedOutputs (the feedback copy and the remodulation done by the a-trous iterations whose
-// results they are).
+// results they are), kFusedGradient (A-SVGF's three stages over tiles of strata).
 #include "core/arith.h"
 #include "core/views.h"
 #include "methods/svgf/edge_stopping.h"
@@ -20,6 +20,8 @@ struct SvgfExact {
   // Every stage is its own pass (so each can be timed, read back and compared alone).
   static constexpr bool kFusedReprojection = false;
   static constexpr bool kFusedOutputs = false;
+  // A-SVGF's three stages as three passes (the CPU runs them as vectorized rows).
+  static constexpr bool kFusedGradient = false;
   // The a-trous and spatial-variance taps as one loop with bounds tests (a second, test-free
   // copy for interior pixels made the exact kernels over planes larger and slower: the a-trous
   // on the H100, the variance on the H200).
@@ -52,6 +54,9 @@ struct SvgfExactPacked {
   // (docs/benchmarks.md).
   static constexpr bool kFusedReprojection = true;
   static constexpr bool kFusedOutputs = true;
+  // A-SVGF's three stages in one launch over tiles of strata (methods/svgf/gradient_tile.h)
+  // where the filter is the default's size; the same lambdas.
+  static constexpr bool kFusedGradient = true;
   // The a-trous's interior pixels skip the 24 bounds tests (same taps, same order). Packed, the
   // test-free copy pays: H200, 1080p exact a-trous 0.806 -> 0.800 ms at camera-pan, 0.497 ->
   // 0.469 at cornell-moving. The variance's did not (0.136 -> 0.148 ms at camera-pan); its
@@ -76,9 +81,10 @@ struct SvgfFast {
   using Signal = PackedIllumVar<Packed4>;
   using ConstSignal = PackedIllumVar<const Packed4>;
   // Demodulate + reproject + guide packing in one launch; the feedback copy and the
-  // remodulation ride on the a-trous iterations that produce them.
+  // remodulation ride on the a-trous iterations that produce them; A-SVGF's stages in one.
   static constexpr bool kFusedReprojection = true;
   static constexpr bool kFusedOutputs = true;
+  static constexpr bool kFusedGradient = true;
   // Interior pixels (footprint inside the image) skip the bounds tests: the a-trous's 24
   // (kSplitInterior), the variance's 48 (its default 7x7 unrolled; kSplitInteriorVariance).
   static constexpr bool kSplitInterior = true;

@@ -57,10 +57,18 @@ struct StratumGuides {
   int strata_width = 0;
   const float* offset = nullptr;
   SVGF_HD int pixel(int sx, int sy) const {
-    const int k = static_cast<int>(offset[sy * strata_width + sx]);
+    return pixel_at(width, sx, sy, static_cast<int>(offset[sy * strata_width + sx]));
+  }
+  // The pixel at offset k of stratum (sx, sy) in a frame `width` pixels wide.
+  SVGF_HD static int pixel_at(int width, int sx, int sy, int k) {
     return (sy * kGradientStratum + k / kGradientStratum) * width + sx * kGradientStratum +
            k % kGradientStratum;
   }
+};
+
+// One stratum's filtered quantities, as a stage stores them in GradientPlanes.
+struct StratumValue {
+  float delta = 0.f, normalizer = 0.f, weight = 0.f;
 };
 
 // Stage 1, per stratum (sx, sy): its sample (the first masked pixel in raster order; the
@@ -72,7 +80,22 @@ struct GradientSamplesKernel {
   int strata_width = 0;
   float* guide_offset = nullptr;
 
+  // A stratum's sample and the offset of the pixel its guides are read at.
+  struct Sample {
+    StratumValue value;
+    int guide = 0;
+  };
+
   SVGF_HD void operator()(int sx, int sy) const {
+    const Sample m = sample(sx, sy);
+    const int s = sy * strata_width + sx;
+    out.delta[s] = m.value.delta;
+    out.normalizer[s] = m.value.normalizer;
+    out.weight[s] = m.value.weight;
+    guide_offset[s] = static_cast<float>(m.guide);
+  }
+
+  SVGF_HD Sample sample(int sx, int sy) const {
     const int x0 = sx * kGradientStratum, y0 = sy * kGradientStratum;
     const int xc = min_i(x0 + 1, width - 1), yc = min_i(y0 + 1, height - 1);
     int guide = (yc - y0) * kGradientStratum + (xc - x0);
@@ -89,22 +112,19 @@ struct GradientSamplesKernel {
       const float mask = samples.mask[inside ? y * width + x : yc * width + xc];
       if (inside && mask > 0.5f) first = k;
     }
-    float delta = 0.f, normalizer = 0.f, weight = 0.f;
+    Sample m;
     if (first >= 0) {
       guide = first;
       const int i = (y0 + first / kGradientStratum) * width + x0 + first % kGradientStratum;
       const float previous = samples.previous[i], current = samples.current[i];
       if (radiance_ok(previous) && radiance_ok(current)) {  // NaN, Inf, negative: no data
-        delta = current - previous;
-        normalizer = max_f(current, previous);
-        weight = 1.f;
+        m.value.delta = current - previous;
+        m.value.normalizer = max_f(current, previous);
+        m.value.weight = 1.f;
       }
     }
-    const int s = sy * strata_width + sx;
-    out.delta[s] = delta;
-    out.normalizer[s] = normalizer;
-    out.weight[s] = weight;
-    guide_offset[s] = static_cast<float>(guide);
+    m.guide = guide;
+    return m;
   }
 
  private:
@@ -127,9 +147,63 @@ struct GradientAtrousKernel {
   float phi_normal = 128.f;
   float depth_gradient_floor = 1e-8f;
 
+  // The input strata as planes over the stratum image (the stage's own input).
+  struct PlanesInput {
+    GradientPlanes<const float> in;
+    StratumGuides at;
+    SVGF_HD float weight(int qx, int qy) const { return in.weight[index(qx, qy)]; }
+    SVGF_HD float delta(int qx, int qy) const { return in.delta[index(qx, qy)]; }
+    SVGF_HD float normalizer(int qx, int qy) const { return in.normalizer[index(qx, qy)]; }
+    SVGF_HD int pixel(int qx, int qy) const { return at.pixel(qx, qy); }
+    SVGF_HD int index(int qx, int qy) const { return qy * at.strata_width + qx; }
+  };
+
   SVGF_HD void operator()(int sx, int sy) const {
-    with_normal_power_of<ExactArith>(phi_normal,
-                                     [&](const auto& power) { filter(sx, sy, power); });
+    with_normal_power_of<ExactArith>(phi_normal, [&](const auto& power) {
+      const StratumValue v = filtered(sx, sy, power, PlanesInput{in, at});
+      const int s = sy * at.strata_width + sx;
+      out.delta[s] = v.delta;
+      out.normalizer[s] = v.normalizer;
+      out.weight[s] = v.weight;
+    });
+  }
+
+  // Stratum (sx, sy) filtered: its 3x3 taps from `input` (anything with weight, delta,
+  // normalizer and pixel of a stratum: the planes above, or a tile of them in a block's
+  // scratch, methods/svgf/gradient_tile.h), the same operations in the same order either way.
+  template <class Power, class Input>
+  SVGF_HD StratumValue filtered(int sx, int sy, const Power& power, const Input& input) const {
+    const int p = input.pixel(sx, sy);
+    const EdgeSample c{guides.depth[p], guides.normal.load(p), 0.f};
+    const uint32_t mesh = guides.mesh_id[p];
+    const float inv_phi_z =
+        inv_depth_tolerance<ExactArith>(phi_depth, guides.depth_fwidth(p), depth_gradient_floor);
+    const InvTapDistances distances = inv_tap_distances();
+    float weight_sum = 0.f, delta = 0.f, normalizer = 0.f;
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int qx = sx + dx * step, qy = sy + dy * step;
+        if (qx < 0 || qy < 0 || qx >= at.strata_width || qy >= strata_height) continue;
+        if (!(input.weight(qx, qy) > 0.f)) continue;
+        float w = 1.f;
+        if (dx != 0 || dy != 0) {
+          const int pq = input.pixel(qx, qy);
+          if (guides.mesh_id[pq] != mesh) continue;
+          const EdgeSample e{guides.depth[pq], guides.normal.load(pq), 0.f};
+          w = edge_stopping_weight<ExactArith>(c, e, distances.depth_scale(inv_phi_z, dx, dy),
+                                               power, 0.f);
+        }
+        weight_sum = weight_sum + w;
+        delta = delta + input.delta(qx, qy) * w;
+        normalizer = normalizer + input.normalizer(qx, qy) * w;
+      }
+    }
+    const bool any = weight_sum > 0.f;
+    StratumValue v;
+    v.delta = any ? delta / weight_sum : 0.f;
+    v.normalizer = any ? normalizer / weight_sum : 0.f;
+    v.weight = any ? 1.f : 0.f;
+    return v;
   }
 
   // 1 / distance in pixels of the 3x3 taps' two classes, axis and diagonal (the squares of
@@ -147,42 +221,6 @@ struct GradientAtrousKernel {
     return {inv_tap_distance(1, 0, step * kGradientStratum),
             inv_tap_distance(1, 1, step * kGradientStratum)};
   }
-
- private:
-  template <class Power>
-  SVGF_HD void filter(int sx, int sy, const Power& power) const {
-    const int s = sy * at.strata_width + sx;
-    const int p = at.pixel(sx, sy);
-    const EdgeSample c{guides.depth[p], guides.normal.load(p), 0.f};
-    const uint32_t mesh = guides.mesh_id[p];
-    const float inv_phi_z =
-        inv_depth_tolerance<ExactArith>(phi_depth, guides.depth_fwidth(p), depth_gradient_floor);
-    const InvTapDistances distances = inv_tap_distances();
-    float weight_sum = 0.f, delta = 0.f, normalizer = 0.f;
-    for (int dy = -1; dy <= 1; ++dy) {
-      for (int dx = -1; dx <= 1; ++dx) {
-        const int qx = sx + dx * step, qy = sy + dy * step;
-        if (qx < 0 || qy < 0 || qx >= at.strata_width || qy >= strata_height) continue;
-        const int q = qy * at.strata_width + qx;
-        if (!(in.weight[q] > 0.f)) continue;
-        float w = 1.f;
-        if (dx != 0 || dy != 0) {
-          const int pq = at.pixel(qx, qy);
-          if (guides.mesh_id[pq] != mesh) continue;
-          const EdgeSample e{guides.depth[pq], guides.normal.load(pq), 0.f};
-          w = edge_stopping_weight<ExactArith>(c, e, distances.depth_scale(inv_phi_z, dx, dy),
-                                               power, 0.f);
-        }
-        weight_sum = weight_sum + w;
-        delta = delta + in.delta[q] * w;
-        normalizer = normalizer + in.normalizer[q] * w;
-      }
-    }
-    const bool any = weight_sum > 0.f;
-    out.delta[s] = any ? delta / weight_sum : 0.f;
-    out.normalizer[s] = any ? normalizer / weight_sum : 0.f;
-    out.weight[s] = any ? 1.f : 0.f;
-  }
 };
 
 // lambda of a filtered stratum: min(1, |delta| / normalizer), 0 without a normalizer.
@@ -199,6 +237,31 @@ SVGF_HD float stratum_lambda(float weight, float delta, float normalizer) {
   return weight > 0.f ? own : 0.f;
 }
 
+// The largest own lambda of the strata within `radius` of (sx, sy) in a strata_width x
+// strata_height image, own(qx, qy) each stratum's (stratum_lambda). kRadius > 0: the radius,
+// known at compile time (the GPU then issues the neighbours' loads together); 0: `radius`. The
+// neighbours in one order (the centre, then dy outer, dx inner): max_f keeps a NaN only as its
+// second operand.
+template <int kRadius, class Own>
+SVGF_HD float largest_lambda(int sx, int sy, int radius, int strata_width, int strata_height,
+                             const Own& own) {
+  const int r = kRadius > 0 ? kRadius : radius;
+  float l = own(sx, sy);
+#if defined(__CUDA_ARCH__)
+#pragma unroll
+#endif
+  for (int dy = -r; dy <= r; ++dy)
+#if defined(__CUDA_ARCH__)
+#pragma unroll
+#endif
+    for (int dx = -r; dx <= r; ++dx) {
+      const int qx = sx + dx, qy = sy + dy;
+      if (qx < 0 || qy < 0 || qx >= strata_width || qy >= strata_height) continue;
+      l = max_f(l, own(qx, qy));
+    }
+  return l;
+}
+
 // Stage 3, per stratum: the largest lambda of the strata within `radius` (a change seen by a
 // neighbouring stratum's one sample also restarts this stratum's pixels: a moving shadow's edge
 // crosses strata whose sample it missed). Max is exact in any order.
@@ -212,34 +275,11 @@ struct GradientLambdaKernel {
     return stratum_lambda(in.weight[s], in.delta[s], in.normalizer[s]);
   }
   SVGF_HD void operator()(int sx, int sy) const {
-    // The default radius as a compile-time loop: the GPU then issues the nine neighbours' loads
-    // together instead of one neighbour's after the other's.
-    if (radius == 1)
-      largest<1>(sx, sy);
-    else
-      largest<0>(sx, sy);
-  }
-
- private:
-  // kRadius > 0: the radius, known at compile time; 0: `radius`. The neighbours in one order
-  // (the centre, then dy outer, dx inner): max_f keeps a NaN only as its second operand.
-  template <int kRadius>
-  SVGF_HD void largest(int sx, int sy) const {
-    const int r = kRadius > 0 ? kRadius : radius;
-    float l = lambda_of(sy * strata_width + sx);
-#if defined(__CUDA_ARCH__)
-#pragma unroll
-#endif
-    for (int dy = -r; dy <= r; ++dy)
-#if defined(__CUDA_ARCH__)
-#pragma unroll
-#endif
-      for (int dx = -r; dx <= r; ++dx) {
-        const int qx = sx + dx, qy = sy + dy;
-        if (qx < 0 || qy < 0 || qx >= strata_width || qy >= strata_height) continue;
-        l = max_f(l, lambda_of(qy * strata_width + qx));
-      }
-    lambda[sy * strata_width + sx] = l;
+    const auto own = [&](int qx, int qy) { return lambda_of(qy * strata_width + qx); };
+    // The default radius as a compile-time loop.
+    lambda[sy * strata_width + sx] =
+        radius == 1 ? largest_lambda<1>(sx, sy, radius, strata_width, strata_height, own)
+                    : largest_lambda<0>(sx, sy, radius, strata_width, strata_height, own);
   }
 };
 

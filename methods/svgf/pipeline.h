@@ -16,6 +16,7 @@
 #include "methods/svgf/demodulate.h"
 #include "methods/svgf/flavors.h"
 #include "methods/svgf/gradient.h"
+#include "methods/svgf/gradient_tile.h"
 #include "methods/svgf/params.h"
 #include "methods/svgf/remodulate.h"
 #include "methods/svgf/reproject.h"
@@ -172,11 +173,34 @@ inline GradientAtrousKernel gradient_atrous_kernel_for(const SvgfFrameBuffers& b
   return k;
 }
 
+// The three stages as one block kernel over tiles of strata (methods/svgf/gradient_tile.h).
+inline GradientTileKernel gradient_tile_kernel_for(const SvgfFrameBuffers& b,
+                                                   const SvgfParams& p) {
+  GradientTileKernel k;
+  k.samples = gradient_samples_kernel_for(b);
+  k.atrous = gradient_atrous_kernel_for(b, p, 0, 1);
+  k.lambda = b.gradient_lambda();
+  k.iterations = p.gradient_iterations;
+  k.radius = p.gradient_lambda_radius;
+  k.strata_width = strata_along(b.guides.width);
+  k.strata_height = strata_along(b.guides.height);
+  return k;
+}
+
 // A-SVGF's three stages (methods/svgf/gradient.h), exact arithmetic in every mode: the frame's
 // gradient samples -> lambda per stratum (b.gradient_lambda()), which the reprojection reads.
-template <class Engine>
+// Where the flavor fuses them and the filter is the default's size, one launch does all three
+// (timed as the samples' stage); the stratum planes then hold nothing of the frame.
+template <class Flavor, class Engine>
 void run_gradient_stages(Engine& engine, const SvgfFrameBuffers& b, const SvgfParams& p) {
   namespace stage = svgf_stage;
+  if constexpr (Flavor::kFusedGradient) {
+    if (GradientTileKernel::handles(p.gradient_iterations, p.gradient_lambda_radius)) {
+      const GradientTileKernel tiles = gradient_tile_kernel_for(b, p);
+      engine.run_blocks(stage::kGradient, tiles, tiles.blocks());
+      return;
+    }
+  }
   const int sw = strata_along(b.guides.width);
   const int sh = strata_along(b.guides.height);
   engine.run(stage::kGradient, gradient_samples_kernel_for(b), sw, sh);
@@ -321,7 +345,7 @@ void run_svgf_frame(Engine& engine, const SvgfFrameBuffers& b, const SvgfParams&
   //    lie in the illumination's planes (the denoiser lends them to a backend that copies its
   //    inputs): these stages run before the demodulation writes the illumination.
   const bool gradient = runs_gradient_stages(b, p, has_history);
-  if (gradient) run_gradient_stages(engine, b, p);
+  if (gradient) run_gradient_stages<Flavor>(engine, b, p);
   const float* lambda = gradient ? b.gradient_lambda() : nullptr;
 
   // 1-5. The signal(s) -> the remodulated color (TAA's input when TAA is on).
