@@ -106,30 +106,34 @@ class Arena {
   size_t used_ = 0;
 };
 
-// Runs `kernel` (built with arena host pointers) on the CPU over the arena and on the GPU over
-// a device copy of the arena as it was before, and requires every value of the two arenas to be
-// identical (outputs, and inputs that must stay untouched): tests/test_device.h's StageRunner
-// on CUDA exact.
-template <class K>
-void check_stage(Arena& arena, const K& kernel, const std::string& what,
-                 cuda::LaunchShape shape = {}) {
+// Runs `run(runner)` on a CUDA exact StageRunner mirroring the arena: the kernel it runs (built
+// with arena host pointers) goes over the arena on the CPU and over a device copy of the arena as
+// it was before on the GPU, and every value of the two arenas must be identical (outputs, and
+// inputs that must stay untouched): tests/test_device.h's StageRunner on CUDA exact.
+template <class Run>
+void check_on_arena(Arena& arena, const Run& run) {
   test::StageRunner runner(test::kCudaExact);
   runner.words(arena.host().data(), arena.planes_used(), arena.width(), arena.height(),
                arena.plane_names());
-  runner.run(runner.on_device(kernel), arena.width(), arena.height(), what, shape);
+  run(runner);
   tally().stage_runs += 1;
   tally().stage_values += runner.values_compared();
 }
 
-// check_stage for a block kernel (core/block_reduce.h) over `blocks` blocks.
+// A pixel kernel over the arena's image.
+template <class K>
+void check_stage(Arena& arena, const K& kernel, const std::string& what,
+                 cuda::LaunchShape shape = {}) {
+  check_on_arena(arena, [&](test::StageRunner& r) {
+    r.run(r.on_device(kernel), arena.width(), arena.height(), what, shape);
+  });
+}
+
+// A block kernel (core/block_reduce.h) over `blocks` blocks.
 template <class K>
 void check_block_stage(Arena& arena, const K& kernel, int blocks, const std::string& what) {
-  test::StageRunner runner(test::kCudaExact);
-  runner.words(arena.host().data(), arena.planes_used(), arena.width(), arena.height(),
-               arena.plane_names());
-  runner.run_blocks(runner.on_device(kernel), blocks, what);
-  tally().stage_runs += 1;
-  tally().stage_values += runner.values_compared();
+  check_on_arena(arena,
+                 [&](test::StageRunner& r) { r.run_blocks(r.on_device(kernel), blocks, what); });
 }
 
 }  // namespace svgf::gpu_test
