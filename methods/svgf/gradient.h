@@ -66,6 +66,15 @@ struct StratumGuides {
   }
 };
 
+// The guides a stratum's a-trous taps compare: those at its guide pixel.
+struct StratumGuide {
+  EdgeSample edge;  // depth and normal (no luminance term)
+  uint32_t mesh;
+};
+SVGF_HD StratumGuide stratum_guide(const GuideView& g, int p) {
+  return StratumGuide{EdgeSample{g.depth[p], g.normal.load(p), 0.f}, g.mesh_id[p]};
+}
+
 // One stratum's filtered quantities, as a stage stores them in GradientPlanes.
 struct StratumValue {
   float delta = 0.f, normalizer = 0.f, weight = 0.f;
@@ -147,20 +156,28 @@ struct GradientAtrousKernel {
   float phi_normal = 128.f;
   float depth_gradient_floor = 1e-8f;
 
-  // The input strata as planes over the stratum image (the stage's own input).
+  // The input strata as planes over the stratum image and their guides read at the frame's
+  // pixels (the stage's own input).
   struct PlanesInput {
     GradientPlanes<const float> in;
     StratumGuides at;
+    GuideView guides;
     SVGF_HD float weight(int qx, int qy) const { return in.weight[index(qx, qy)]; }
     SVGF_HD float delta(int qx, int qy) const { return in.delta[index(qx, qy)]; }
     SVGF_HD float normalizer(int qx, int qy) const { return in.normalizer[index(qx, qy)]; }
-    SVGF_HD int pixel(int qx, int qy) const { return at.pixel(qx, qy); }
+    SVGF_HD uint32_t mesh(int qx, int qy) const { return guides.mesh_id[at.pixel(qx, qy)]; }
+    SVGF_HD EdgeSample edge(int qx, int qy) const {
+      return stratum_guide(guides, at.pixel(qx, qy)).edge;
+    }
+    SVGF_HD float depth_fwidth(int qx, int qy) const {
+      return guides.depth_fwidth(at.pixel(qx, qy));
+    }
     SVGF_HD int index(int qx, int qy) const { return qy * at.strata_width + qx; }
   };
 
   SVGF_HD void operator()(int sx, int sy) const {
     with_normal_power_of<ExactArith>(phi_normal, [&](const auto& power) {
-      const StratumValue v = filtered(sx, sy, power, PlanesInput{in, at});
+      const StratumValue v = filtered(sx, sy, power, PlanesInput{in, at, guides});
       const int s = sy * at.strata_width + sx;
       out.delta[s] = v.delta;
       out.normalizer[s] = v.normalizer;
@@ -169,15 +186,15 @@ struct GradientAtrousKernel {
   }
 
   // Stratum (sx, sy) filtered: its 3x3 taps from `input` (anything with weight, delta,
-  // normalizer and pixel of a stratum: the planes above, or a tile of them in a block's
-  // scratch, methods/svgf/gradient_tile.h), the same operations in the same order either way.
+  // normalizer, mesh, edge and depth_fwidth of a stratum: the planes above, or a tile of them
+  // in a block's scratch, methods/svgf/gradient_tile.h), the same operations in the same order
+  // either way.
   template <class Power, class Input>
   SVGF_HD StratumValue filtered(int sx, int sy, const Power& power, const Input& input) const {
-    const int p = input.pixel(sx, sy);
-    const EdgeSample c{guides.depth[p], guides.normal.load(p), 0.f};
-    const uint32_t mesh = guides.mesh_id[p];
-    const float inv_phi_z =
-        inv_depth_tolerance<ExactArith>(phi_depth, guides.depth_fwidth(p), depth_gradient_floor);
+    const EdgeSample c = input.edge(sx, sy);
+    const uint32_t mesh = input.mesh(sx, sy);
+    const float inv_phi_z = inv_depth_tolerance<ExactArith>(
+        phi_depth, input.depth_fwidth(sx, sy), depth_gradient_floor);
     const InvTapDistances distances = inv_tap_distances();
     float weight_sum = 0.f, delta = 0.f, normalizer = 0.f;
     for (int dy = -1; dy <= 1; ++dy) {
@@ -187,11 +204,9 @@ struct GradientAtrousKernel {
         if (!(input.weight(qx, qy) > 0.f)) continue;
         float w = 1.f;
         if (dx != 0 || dy != 0) {
-          const int pq = input.pixel(qx, qy);
-          if (guides.mesh_id[pq] != mesh) continue;
-          const EdgeSample e{guides.depth[pq], guides.normal.load(pq), 0.f};
-          w = edge_stopping_weight<ExactArith>(c, e, distances.depth_scale(inv_phi_z, dx, dy),
-                                               power, 0.f);
+          if (input.mesh(qx, qy) != mesh) continue;
+          w = edge_stopping_weight<ExactArith>(
+              c, input.edge(qx, qy), distances.depth_scale(inv_phi_z, dx, dy), power, 0.f);
         }
         weight_sum = weight_sum + w;
         delta = delta + input.delta(qx, qy) * w;

@@ -1,15 +1,18 @@
 #pragma once
 // A-SVGF's three stages (methods/svgf/gradient.h) as one block kernel over a tile of strata, for
 // the default filter: at most one a-trous step and a lambda radius of at most 1. Each block
-// computes the samples of its tile and a 2-stratum halo into its scratch, filters the tile and
-// a 1-stratum halo there, and writes the largest lambda of each of its strata: one launch whose
-// intermediate strata never leave the block, instead of three launches over the whole stratum
-// image (each a short chain of dependent loads with the GPU a third full: docs/benchmarks.md).
+// computes the samples of its tile and a 2-stratum halo, with the guides at their pixels, into
+// its scratch (shared memory on the GPU: a tap reads a neighbour's guides there, not nine
+// times from the frame), filters the tile and a 1-stratum halo there, and writes the largest
+// lambda of each of its strata: one launch whose intermediate strata never leave the block,
+// instead of three launches over the whole stratum image (each a short chain of dependent loads
+// with the GPU a third full: docs/benchmarks.md).
 // The per-stratum work is the stages' own functions (GradientSamplesKernel::sample,
 // GradientAtrousKernel::filtered, stratum_lambda, largest_lambda), so the lambda plane has the
 // three stages' bits (tests/svgf_gradient_test.cpp; the stratum planes are not written). The
 // packed flavors run it (methods/svgf/flavors.h: kFusedGradient); the CPU's SvgfExact keeps its
 // vectorized rows of the three stages.
+#include "core/det_math.h"
 #include "core/hd.h"
 #include "methods/svgf/gradient.h"
 
@@ -24,9 +27,13 @@ struct GradientTileKernel {
   static constexpr int kMid = kTile + 2;           // the filtered cells along a side
   static constexpr int kSampleCells = kSpan * kSpan;
   static constexpr int kMidCells = kMid * kMid;
-  // Delta, normalizer, weight and guide offset of each sample cell, then each filtered cell's
-  // own lambda.
-  static constexpr int kScratchFloats = 4 * kSampleCells + kMidCells;
+  // The planes of the samples' cells: each stratum's sample and the guides at its guide pixel
+  // (the a-trous taps read each neighbour's guides up to nine times: here once from the frame).
+  enum Plane { kDelta, kNormalizer, kWeight, kDepth, kNormalX, kNormalY, kNormalZ, kMesh,
+               kDepthFwidth, kPlanes };
+  // The planes, then each filtered cell's own lambda.
+  static constexpr int kOwnLambdas = kPlanes * kSampleCells;
+  static constexpr int kScratchFloats = kOwnLambdas + kMidCells;
 
   GradientSamplesKernel samples;  // its planes unused: the values stay in the scratch
   GradientAtrousKernel atrous;    // step 1; its planes unused
@@ -47,15 +54,19 @@ struct GradientTileKernel {
   struct TileInput {
     const float* cells = nullptr;
     int x0 = 0, y0 = 0;
-    int width = 0;  // the frame's, pixels
     SVGF_HD int cell(int qx, int qy) const { return (qy - y0) * kSpan + (qx - x0); }
-    SVGF_HD float delta(int qx, int qy) const { return cells[cell(qx, qy)]; }
-    SVGF_HD float normalizer(int qx, int qy) const { return cells[kSampleCells + cell(qx, qy)]; }
-    SVGF_HD float weight(int qx, int qy) const { return cells[2 * kSampleCells + cell(qx, qy)]; }
-    SVGF_HD int pixel(int qx, int qy) const {
-      return StratumGuides::pixel_at(width, qx, qy,
-                                     static_cast<int>(cells[3 * kSampleCells + cell(qx, qy)]));
+    SVGF_HD float at(Plane plane, int qx, int qy) const {
+      return cells[plane * kSampleCells + cell(qx, qy)];
     }
+    SVGF_HD float delta(int qx, int qy) const { return at(kDelta, qx, qy); }
+    SVGF_HD float normalizer(int qx, int qy) const { return at(kNormalizer, qx, qy); }
+    SVGF_HD float weight(int qx, int qy) const { return at(kWeight, qx, qy); }
+    SVGF_HD uint32_t mesh(int qx, int qy) const { return float_bits(at(kMesh, qx, qy)); }
+    SVGF_HD EdgeSample edge(int qx, int qy) const {
+      const Vec3 n = make_vec3(at(kNormalX, qx, qy), at(kNormalY, qx, qy), at(kNormalZ, qx, qy));
+      return EdgeSample{at(kDepth, qx, qy), n, 0.f};
+    }
+    SVGF_HD float depth_fwidth(int qx, int qy) const { return at(kDepthFwidth, qx, qy); }
   };
 
   SVGF_HD_TEMPLATE
@@ -63,21 +74,34 @@ struct GradientTileKernel {
   SVGF_HD void operator()(const Block& b, int block) const {
     const int tx = (block % tiles_x()) * kTile, ty = (block / tiles_x()) * kTile;
     float* const cells = b.scratch();
-    float* const own = cells + 4 * kSampleCells;
-    const TileInput input{cells, tx - kHalo, ty - kHalo, samples.width};
+    float* const own = cells + kOwnLambdas;
+    const TileInput input{cells, tx - kHalo, ty - kHalo};
     const auto inside = [&](int sx, int sy) {
       return sx >= 0 && sy >= 0 && sx < strata_width && sy < strata_height;
     };
-    // 1. The samples of the tile and its halo (strata outside the image are never read).
+    // 1. The samples of the tile and its halo (strata outside the image are never read) and,
+    //    where an a-trous step reads them, their guides; the depth's fwidth only where a
+    //    stratum is filtered (the taps' centre).
     b.rows([&](int r) {
       if (r >= kSampleCells) return;
-      const int sx = input.x0 + r % kSpan, sy = input.y0 + r / kSpan;
+      const int cx = r % kSpan, cy = r / kSpan;
+      const int sx = input.x0 + cx, sy = input.y0 + cy;
       if (!inside(sx, sy)) return;
       const GradientSamplesKernel::Sample m = samples.sample(sx, sy);
-      cells[r] = m.value.delta;
-      cells[kSampleCells + r] = m.value.normalizer;
-      cells[2 * kSampleCells + r] = m.value.weight;
-      cells[3 * kSampleCells + r] = static_cast<float>(m.guide);
+      float* const c = cells + r;
+      c[kDelta * kSampleCells] = m.value.delta;
+      c[kNormalizer * kSampleCells] = m.value.normalizer;
+      c[kWeight * kSampleCells] = m.value.weight;
+      if (iterations == 0) return;
+      const int p = StratumGuides::pixel_at(samples.width, sx, sy, m.guide);
+      const StratumGuide g = stratum_guide(atrous.guides, p);
+      c[kDepth * kSampleCells] = g.edge.depth;
+      c[kNormalX * kSampleCells] = g.edge.normal.x;
+      c[kNormalY * kSampleCells] = g.edge.normal.y;
+      c[kNormalZ * kSampleCells] = g.edge.normal.z;
+      c[kMesh * kSampleCells] = bits_float(g.mesh);
+      const bool centre = cx > 0 && cy > 0 && cx < kSpan - 1 && cy < kSpan - 1;
+      if (centre) c[kDepthFwidth * kSampleCells] = atrous.guides.depth_fwidth(p);
     });
     // 2. The own lambda of each stratum of the tile and a 1-stratum halo: of its filtered
     //    value, or (no a-trous step) of its sample.
