@@ -21,6 +21,7 @@
 #include "methods/bmfr/denoiser.h"
 #include "methods/jbf/denoiser.h"
 #include "methods/svgf/gradient_tile.h"
+#include "methods/svgf/pipeline.h"
 #include "methods/wavelet/denoiser.h"
 
 namespace svgf::bench {
@@ -334,19 +335,33 @@ StageCost fused_gradient_cost(Stage stage, const SvgfParams& p, const FrameTrait
   return c;
 }
 
+// Whether the sanitize stage rides on the demodulation's kernel in a steady frame (fast mode
+// and CUDA's exact mode: methods/svgf/pipeline.h, fuses_sanitize); it is then counted there.
+bool sanitize_fused(Mode mode, const SvgfParams& p, const FrameTraits& f) {
+  const bool gradient = p.antilag == Antilag::Gradient && f.gradient_samples;
+  return (mode == Mode::Fast || f.packed_exact) &&
+         sanitize_fusable(p, /*has_history=*/true, gradient, f.split);
+}
+
 // Demodulate + reproject + guide packing in one kernel (fast mode, and CUDA's exact mode:
 // kFusedReprojection in methods/svgf/flavors.h), timed and counted as Demodulate. The
 // illumination comes back from the thread's own write. Background pixels read depth and normal
-// only (to pack them), besides color and albedo.
-StageCost fused_reprojection_cost(const SvgfParams& p, const FrameTraits& f, bool surface) {
+// only (to pack them), besides color and albedo. `sanitize`: the sanitize stage rides on it:
+// its tests, and on background the planes only it reads (depth dx/dy, motion 2).
+StageCost fused_reprojection_cost(const SvgfParams& p, const FrameTraits& f, bool surface,
+                                  bool sanitize) {
   StageCost c;
-  c.read = (3 + 3 + (f.emission ? 3 : 0) + (surface ? 9 + 5 + 6 : 4)) * kFloat;
+  c.read = (3 + 3 + (f.emission ? 3 : 0) + (surface ? 9 + 5 + 6 : sanitize ? 8 : 4)) * kFloat;
   c.written = (3 + 4 + 2 + 1 + 4) * kFloat;  // + packed guides (depth, normal)
   c.ops = kDemodulate + (f.emission ? kEmission : 0) + (surface ? kReproject : kReprojectNoHistory);
   c.planes =
       "R color 3, albedo 3, emission 3 (if any), guides 9, previous guides 5, history 6 "
       "(background: depth, normal); W illumination 3, accumulated 4, moments 2, length 1, "
       "packed guides 4";
+  if (sanitize) {
+    c.ops += sanitize_cost(f.emission).ops;
+    c.planes += "; the sanitize stage's tests (background: + depth dx/dy, motion 2)";
+  }
   return plus(c, antilag_extra(p, f, surface, true));
 }
 
@@ -384,9 +399,11 @@ StageCost exact_cost(Stage stage, const SvgfParams& p, const FrameTraits& f, boo
   StageCost c;
   switch (stage) {
     case Stage::Sanitize:
+      if (sanitize_fused(Mode::Exact, p, f)) break;  // in the demodulation's kernel (CUDA)
       return sanitize_cost(emission);
     case Stage::Demodulate:
-      if (packed) return fused_reprojection_cost(p, f, surface);  // + reproject (CUDA)
+      if (packed)  // + reproject (CUDA)
+        return fused_reprojection_cost(p, f, surface, sanitize_fused(Mode::Exact, p, f));
       c.read = (3 + 3 + e) * kFloat;  // color, albedo, emission
       c.written = 3 * kFloat;         // illumination
       c.ops = kDemodulate + (emission ? kEmission : 0);
@@ -456,9 +473,10 @@ StageCost fast_cost(Stage stage, const SvgfParams& p, const FrameTraits& f, bool
   StageCost c;
   switch (stage) {
     case Stage::Sanitize:
+      if (sanitize_fused(Mode::Fast, p, f)) break;  // in the demodulation's kernel
       return sanitize_cost(emission);
     case Stage::Demodulate:
-      return fused_reprojection_cost(p, f, surface);
+      return fused_reprojection_cost(p, f, surface, sanitize_fused(Mode::Fast, p, f));
     case Stage::Variance:  // the same functor as exact mode's: guides on background only
       c.read = (1 + 4 + (surface ? 0 : 4)) * kFloat;  // length, accumulated, (packed guides)
       c.written = 4 * kFloat;                         // packed color + variance

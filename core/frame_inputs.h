@@ -2,6 +2,7 @@
 // A frame's inputs as a backend holds them for the filters: views into host memory (the CPU
 // reads the Frame in place) or device memory (the CUDA backend's upload). Every method reads
 // its inputs through this; the previous frame's guides are kept by the backend.
+#include "core/sanitize.h"
 #include "core/views.h"
 
 namespace svgf {
@@ -28,6 +29,12 @@ struct FrameInputs {
   // both (else no planes).
   ConstRgbView direct;
   ConstRgbView indirect;
+  // Where the method let the backend leave the sanitize stage to it (a backend that stores the
+  // inputs in planes of its own: CUDA): the rule in place over the planes above, not yet run.
+  // The method runs it (run_tallying, stage kSanitizeStage) before any stage reads the inputs,
+  // or fuses it into its first pixel kernel (methods/svgf/pipeline.h).
+  bool sanitize_pending = false;
+  SanitizeInputs sanitize;
 };
 
 }  // namespace svgf

@@ -2,8 +2,10 @@
 // The input rule every frame passes before any stage of any method reads it (docs/bad-input.md).
 // The backend runs SanitizeInputs as the frame's first stage, "sanitize": on the CPU as a
 // read-only scan that repairs a copy only when something is wrong, on CUDA in place on the
-// uploaded planes. Either way a clean value is never changed (the rule is the identity on good
-// input), so a clean frame costs one read and bits do not depend on which path ran.
+// uploaded planes, where SVGF's packed flavors may instead run it in the first kernel that reads
+// the inputs (FrameInputs::sanitize_pending, methods/svgf/pipeline.h). Either way a clean value
+// is never changed (the rule is the identity on good input and on its own output), so a clean
+// frame costs one read and bits do not depend on which path ran.
 #include <cstdint>
 
 #include "core/arith.h"
@@ -93,6 +95,37 @@ SVGF_HD bool renormalized(Vec3& n) {
   return true;
 }
 
+// The guides' part of the rule (sanitize_pixel's): a surface (depth > 0) needs every guide
+// finite and bounded and a normal that can be brought to unit length; a background pixel
+// (depth <= 0) needs finite guides only. Depth NaN or +-Inf, or any failure, makes the pixel
+// clean background: all guides 0. Returns kRepairNormal, kRepairSurface or 0. A function of
+// the pixel's guides alone, so a stage may apply it where it reads a pixel's guides before the
+// sanitize stage ran (methods/svgf/gradient.h: sanitized_stratum_guide); on guides it already
+// passed it changes nothing.
+SVGF_HD uint32_t sanitize_guides(float& depth, float& depth_dx, float& depth_dy, Vec3& normal,
+                                 Vec3& position, bool has_position) {
+  uint32_t repairs = 0;
+  const bool surface = depth > 0.f;
+  const float limit = surface ? kMaxGuide : 3.40282347e38f;  // background: finite is enough
+  bool guides_ok = bounded(depth, limit) && bounded(depth_dx, limit) &&
+                   bounded(depth_dy, limit) && bounded(normal, limit) &&
+                   (!has_position || bounded(position, limit));
+  if (guides_ok && surface) {
+    const float n2 = dot(normal, normal);
+    if (!(n2 >= kMinNormalLength2 && n2 <= kMaxNormalLength2)) {
+      guides_ok = renormalized(normal);
+      if (guides_ok) repairs |= kRepairNormal;
+    }
+  }
+  if (!guides_ok) {
+    depth = depth_dx = depth_dy = 0.f;
+    normal = Vec3();
+    position = Vec3();
+    repairs |= kRepairSurface;
+  }
+  return repairs;
+}
+
 // One pixel of a frame's inputs, as stored by the backend.
 struct InputPixel {
   Vec3 color, albedo, emission, normal, position;
@@ -118,29 +151,8 @@ SVGF_HD uint32_t sanitize_pixel(InputPixel& p, bool has_emission, bool has_posit
   p.motion_x = sanitize_motion(p.motion_x, bad);
   p.motion_y = sanitize_motion(p.motion_y, bad);
   if (bad) repairs |= kRepairMotion;
-
-  // Guides. A surface (depth > 0) needs every guide finite and bounded and a normal that can be
-  // brought to unit length; a background pixel (depth <= 0) needs finite guides only. Depth NaN
-  // or +-Inf, or any failure, makes the pixel clean background: all guides 0.
-  const bool surface = p.depth > 0.f;
-  const float limit = surface ? kMaxGuide : 3.40282347e38f;  // background: finite is enough
-  bool guides_ok = bounded(p.depth, limit) && bounded(p.depth_dx, limit) &&
-                   bounded(p.depth_dy, limit) && bounded(p.normal, limit) &&
-                   (!has_position || bounded(p.position, limit));
-  if (guides_ok && surface) {
-    const float n2 = dot(p.normal, p.normal);
-    if (!(n2 >= kMinNormalLength2 && n2 <= kMaxNormalLength2)) {
-      guides_ok = renormalized(p.normal);
-      if (guides_ok) repairs |= kRepairNormal;
-    }
-  }
-  if (!guides_ok) {
-    p.depth = p.depth_dx = p.depth_dy = 0.f;
-    p.normal = Vec3();
-    p.position = Vec3();
-    repairs |= kRepairSurface;
-  }
-  return repairs;
+  return repairs | sanitize_guides(p.depth, p.depth_dx, p.depth_dy, p.normal, p.position,
+                                   has_position);
 }
 
 // A frame's inputs as one backend stores them: `in` read, repaired pixels written to `out`

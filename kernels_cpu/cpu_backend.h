@@ -14,7 +14,9 @@
 //   float* plane(buffer, c); RgbView rgb(buffer, first); Image read(buffer)
 //                                          its planes as views; a host copy
 //   bool resize(w, h)                      frame size (true when buffers must be reallocated)
-//   FrameInputs inputs(frame, position, split, gradient_into)  this frame's inputs on the
+//   FrameInputs inputs(frame, position, split, gradient_into, defer_sanitize)  this frame's
+//                                          inputs, sanitized unless the method may run that
+//                                          stage itself and the backend lets it; on the
 //                                          backend's side (world positions, direct and
 //                                          indirect, and the gradient samples only when asked
 //                                          for; split: the frame carries both; gradient_into:
@@ -90,22 +92,30 @@ class CpuBackend {
   // repaired copy. `position`: the method reads world positions (then they are checked too);
   // `split`: direct and indirect (the frame carries both), checked as color is.
   // `gradient_into`: the method reads A-SVGF's gradient samples (read in place here; the
-  // planes it lends are for a backend that copies them).
+  // planes it lends are for a backend that copies them). `defer_sanitize`: the method may run
+  // the sanitize stage itself (FrameInputs::sanitize_pending); reading the frame in place, this
+  // backend runs it here, unless it copies the inputs (copies_inputs_, the tests' stand-in for
+  // the CUDA backend's planes).
   FrameInputs inputs(const Frame& f, bool position = false, bool split = false,
-                     float* gradient_into = nullptr) {
-    SanitizeInputs scan{width_, input_planes(f, position, split), {}};
-    engine_.run_tallying(kSanitizeStage, scan, width_, height_);
+                     float* gradient_into = nullptr, bool defer_sanitize = false) {
     FrameInputs in;
-    in.guides = f.guides();
-    in.color = f.color.rgb();
-    in.albedo = f.albedo.rgb();
-    if (!f.emission.empty()) in.emission = f.emission.rgb();
-    if (position) in.position = f.position.rgb();
-    if (split) {
-      in.direct = f.direct.rgb();
-      in.indirect = f.indirect.rgb();
+    if (defer_sanitize && copies_inputs_) {
+      in = copied_inputs(f, position, split);
+      in.sanitize_pending = true;
+    } else {
+      SanitizeInputs scan{width_, input_planes(f, position, split), {}};
+      engine_.run_tallying(kSanitizeStage, scan, width_, height_);
+      in.guides = f.guides();
+      in.color = f.color.rgb();
+      in.albedo = f.albedo.rgb();
+      if (!f.emission.empty()) in.emission = f.emission.rgb();
+      if (position) in.position = f.position.rgb();
+      if (split) {
+        in.direct = f.direct.rgb();
+        in.indirect = f.indirect.rgb();
+      }
+      if (engine_.tallies().any()) in = repaired_inputs(f, position, split);
     }
-    if (engine_.tallies().any()) in = repaired_inputs(f, position, split);
     if (gradient_into) in.gradient = gradient_samples(f);
     current_guides_ = in.guides;
     return in;
@@ -181,6 +191,13 @@ class CpuBackend {
 
   // A copy of the frame's inputs with the bad pixels repaired (the same kernel, writing).
   FrameInputs repaired_inputs(const Frame& f, bool position, bool split) {
+    FrameInputs r = copied_inputs(f, position, split);
+    engine_.run(kSanitizeStage, r.sanitize, width_, height_);
+    return r;
+  }
+
+  // A copy of the frame's inputs, and the sanitize rule in place over it (not run).
+  FrameInputs copied_inputs(const Frame& f, bool position, bool split) {
     enum : int { kColor = 0, kAlbedo = 3, kNormal = 6, kDepth = 9, kDepthDx, kDepthDy, kMotionX,
                  kMotionY, kEmission = 14, kPosition = 17, kDirect = 20, kIndirect = 23,
                  kPlanes = 26 };
@@ -235,9 +252,9 @@ class CpuBackend {
     in.depth_dy = out.depth_dy;
     in.motion_x = out.motion_x;
     in.motion_y = out.motion_y;
-    engine_.run(kSanitizeStage, SanitizeInputs{width_, in, out}, width_, height_);
 
     FrameInputs r;
+    r.sanitize = SanitizeInputs{width_, in, out};
     r.guides.width = width_;
     r.guides.height = height_;
     r.guides.depth = out.depth;
@@ -259,9 +276,15 @@ class CpuBackend {
   CpuEngine engine_;
   int width_ = 0, height_ = 0;
   Image prev_planes_;  // depth, normal xyz
-  Image repaired_;     // the inputs of a frame that needed repairs
+  Image repaired_;     // the inputs of a frame that needed repairs, or copied (copies_inputs_)
   GuideView current_guides_;
   std::vector<uint32_t> prev_mesh_id_;
+
+ protected:
+  // Copy every frame's inputs and leave the sanitize stage to a method that asks to run it
+  // (inputs()' defer_sanitize), as the CUDA backend does: how the CPU tests run SVGF's fused
+  // sanitize (tests/svgf_packed_exact_test.cpp).
+  bool copies_inputs_ = false;
 };
 
 }  // namespace svgf::cpu

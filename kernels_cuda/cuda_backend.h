@@ -141,7 +141,7 @@ class CudaBackend {
   // them) into the 3 planes it lends there (memory it does not use until its gradient stage
   // has read them: no planes of the backend's own); null: not wanted.
   FrameInputs inputs(const Frame& in, bool position = false, bool split = false,
-                     float* gradient_into = nullptr) {
+                     float* gradient_into = nullptr, bool defer_sanitize = false) {
     const size_t n = pixels();
     float* staging = staging_in_.get();
     auto stage = [&](const float* src, int plane) {
@@ -193,14 +193,15 @@ class CudaBackend {
                       "upload of the gradient samples");
     if (position) position_.upload_async(staging_position_.get(), 3 * n, engine_.stream());
     if (split) split_.upload_async(staging_split_.get(), 6 * n, engine_.stream());
-    return landed_inputs(emission, gradient ? gradient_into : nullptr, position, split);
+    return landed_inputs(emission, gradient ? gradient_into : nullptr, position, split,
+                         defer_sanitize);
   }
 
   // The device path: every channel of the caller's frame copied into the same planes as an
   // upload's, in one launch on the caller's stream (timed as copy_in); the caller's buffers
   // are only read.
   FrameInputs inputs(const DeviceFrame& in, bool position = false, bool split = false,
-                     float* gradient_into = nullptr) {
+                     float* gradient_into = nullptr, bool defer_sanitize = false) {
     if (position) ensure_position();
     if (split) ensure_split();
     StridedCopy copy;
@@ -230,7 +231,8 @@ class CudaBackend {
       add(in.indirect, 3, [this](int c) { return plane(split_, 3 + c); });
     }
     engine_.run(kCopyInStage, copy, width_, height_);
-    return landed_inputs(emission, gradient ? gradient_into : nullptr, position, split);
+    return landed_inputs(emission, gradient ? gradient_into : nullptr, position, split,
+                         defer_sanitize);
   }
 
   // The previous frame's depth, normal and mesh id: what the methods read of it (SVGF's
@@ -279,8 +281,10 @@ class CudaBackend {
   }
 
   // The frame's inputs in the backend's planes, sanitized: what both paths hand the method.
-  // `gradient`: where the gradient samples landed (null: none).
-  FrameInputs landed_inputs(bool emission, const float* gradient, bool position, bool split) {
+  // `gradient`: where the gradient samples landed (null: none). `defer`: the sanitize stage is
+  // left to the method (FrameInputs::sanitize_pending).
+  FrameInputs landed_inputs(bool emission, const float* gradient, bool position, bool split,
+                            bool defer) {
     FrameInputs f;
     f.guides = current_guides();
     f.color = input_rgb(kColor);
@@ -296,7 +300,9 @@ class CudaBackend {
       f.direct = rgb(split_, 0);
       f.indirect = rgb(split_, 3);
     }
-    sanitize(f, emission, position, split);
+    f.sanitize = sanitize_kernel(f, emission, position, split);
+    f.sanitize_pending = defer;
+    if (!defer) engine_.run_tallying(kSanitizeStage, f.sanitize, width_, height_);
     return f;
   }
 
@@ -322,7 +328,8 @@ class CudaBackend {
 
   // The sanitize stage (core/sanitize.h), in place on the uploaded planes: a clean pixel is
   // only read.
-  void sanitize(const FrameInputs& f, bool emission, bool position, bool split) {
+  SanitizeInputs sanitize_kernel(const FrameInputs& f, bool emission, bool position,
+                                 bool split) {
     InputPlanesOut out;
     out.color = input_rgb(kColor);
     out.albedo = input_rgb(kAlbedo);
@@ -351,7 +358,7 @@ class CudaBackend {
     in.depth_dy = out.depth_dy;
     in.motion_x = out.motion_x;
     in.motion_y = out.motion_y;
-    engine_.run_tallying(kSanitizeStage, SanitizeInputs{width_, in, out}, width_, height_);
+    return SanitizeInputs{width_, in, out};
   }
 
   // Planes of one frame's upload, in order; mesh_id travels as raw 32-bit words. The guides

@@ -1133,3 +1133,54 @@ TEST_CASE("stage cost: BMFR is counted in every stage, its regression a row of i
   CHECK(ops(Mode::Fast, noise, bmfr_stage::kAccumulate, 1) ==
         ops(Mode::Exact, noise, bmfr_stage::kAccumulate, 1));
 }
+
+TEST_CASE("stage cost: the sanitize stage counted in the demodulation's kernel where it rides there",
+          "[bench][stage_cost]") {
+  // methods/svgf/pipeline.h, fuses_sanitize: fast mode and CUDA's exact mode run the sanitize
+  // rule in the demodulate + reproject kernel unless something before it reads the inputs (the
+  // statistics anti-lag's neighbourhood, A-SVGF's three passes) or a second signal follows it.
+  const SvgfParams off = without_antilag(), gradient = with_antilag(Antilag::Gradient),
+                   statistics = with_antilag(Antilag::Statistics);
+  SvgfParams wide = gradient;
+  wide.gradient_iterations = 3;
+  for (double surface : {0.0, 1.0}) {
+    bench::FrameTraits samples = frames(surface, 1920, 1080), plain = samples;
+    samples.gradient_samples = true;
+    bench::FrameTraits packed = samples, split = samples;
+    packed.packed_exact = true;
+    split.split = true;
+    const bench::StageCost alone = bench::stage_cost(Mode::Exact, Stage::Sanitize, off, plain);
+    REQUIRE(alone.bytes() > 0);
+    struct Case {
+      Mode mode;
+      const SvgfParams& p;
+      const bench::FrameTraits& f;
+      bool fused;
+    };
+    const Case cases[] = {{Mode::Fast, off, plain, true},
+                          {Mode::Fast, gradient, samples, true},
+                          {Mode::Exact, gradient, packed, true},
+                          {Mode::Exact, gradient, samples, false},  // the CPU: planes
+                          {Mode::Fast, statistics, plain, false},
+                          {Mode::Fast, gradient, plain, false},  // no samples: statistics
+                          {Mode::Fast, wide, samples, false},
+                          {Mode::Fast, gradient, split, false}};
+    for (const Case& c : cases) {
+      INFO("surface " << surface << ", mode " << (c.mode == Mode::Fast ? "fast" : "exact")
+                      << ", fused " << c.fused);
+      const bench::StageCost s = bench::stage_cost(c.mode, Stage::Sanitize, c.p, c.f);
+      CHECK(s.bytes() == (c.fused ? 0.0 : alone.bytes()));
+      CHECK(s.ops == (c.fused ? 0.0 : alone.ops));
+    }
+    // Where it rides: its tests added, and on background the planes only it reads (a split
+    // frame's kernel, otherwise the same, carries none of it).
+    const bench::StageCost with = bench::stage_cost(Mode::Fast, Stage::Demodulate, gradient, samples);
+    const bench::StageCost without = bench::stage_cost(Mode::Fast, Stage::Demodulate, gradient, split);
+    CHECK(with.ops - without.ops == Approx(alone.ops));
+    CHECK(with.read - without.read == (surface > 0 ? 0.0 : 4 * 4));
+    CHECK(with.written == without.written);
+    const bench::StageCost exact = bench::stage_cost(Mode::Exact, Stage::Demodulate, gradient, packed);
+    CHECK(exact.ops == with.ops);
+    CHECK(exact.read == with.read);
+  }
+}

@@ -368,6 +368,12 @@ class MirrorEngine {
   void run_counting(const char* stage, const K& kernel, int w, int h) {
     run(stage, kernel, w, h);
   }
+  // A kernel returning repair bits (the sanitize stage, alone or fused into the first kernel):
+  // its writes compared; the bits the two sides count are compared by the pipeline tests.
+  template <class K>
+  void run_tallying(const char* stage, const K& kernel, int w, int h) {
+    run(stage, kernel, w, h);
+  }
   template <class K>
   void run_blocks(const char* stage, const K& kernel, int blocks) {
     check_block_stage(arena_, kernel, blocks,

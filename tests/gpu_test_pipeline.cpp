@@ -76,6 +76,21 @@ std::vector<Source> sources() {
       f.color.at(50, 40, 1) = std::numeric_limits<float>::infinity();
       f.color.at(100, 60, 2) = -2.f;
       f.color.at(200, 116, 0) = 3e-39f;  // subnormal: kept, not replaced
+      // Bad guides and motion, some at the gradient samples' pixels (every third row and
+      // column here): the sanitize stage's guide rule, also where CUDA's fused gradient launch
+      // reads the guides before the sanitize stage has run (methods/svgf/pipeline.h).
+      const float nan = std::numeric_limits<float>::quiet_NaN();
+      for (int y = 0; y < f.height(); y += 7)
+        for (int x = (y * 3) % 11; x < f.width(); x += 11) {
+          switch ((x + y) % 6) {
+            case 0: f.depth.at(x, y, 0) = nan; break;
+            case 1: f.depth_gradient.at(x, y, 1) = std::numeric_limits<float>::infinity(); break;
+            case 2: for (int c = 0; c < 3; ++c) f.normal.at(x, y, c) *= 3.f; break;
+            case 3: for (int c = 0; c < 3; ++c) f.normal.at(x, y, c) = 0.f; break;
+            case 4: f.motion.at(x, y, 0) = nan; break;
+            default: f.albedo.at(x, y, 2) = 2.f; break;
+          }
+        }
     }
     // A-SVGF's gradient samples from frame 1 on (read by --antilag gradient only), one per 3x3
     // stratum: the square's strata changed by half, the rest not at all.
@@ -177,6 +192,13 @@ TEST_CASE("pipeline: CPU vs CUDA exact bitwise over whole sequences; fast within
       INFO(where);
       REQUIRE(cpu->last_report().replaced_samples == exact->last_report().replaced_samples);
       REQUIRE(fast->last_report().replaced_samples == exact->last_report().replaced_samples);
+      for (const Denoiser* d : {exact.get(), fast.get()}) {
+        const InputRepairs a = cpu->last_report().repairs, b = d->last_report().repairs;
+        REQUIRE(a.albedo == b.albedo);
+        REQUIRE(a.normal == b.normal);
+        REQUIRE(a.surface == b.surface);
+        REQUIRE(a.motion == b.motion);
+      }
       for (const std::string& name : cpu->debug_buffers()) {
         const Image a = cpu->read_buffer(name);
         test::require_identical(a, exact->read_buffer(name), where + ": " + name);

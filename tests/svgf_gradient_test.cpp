@@ -281,8 +281,9 @@ void reprojection_follows_lambda(const TestDevice& d) {
 }
 
 // A w x h frame for the fused stages: guides in patches of two meshes (strays of a third,
-// holes, NaN depth and normals), and gradient samples at about one pixel in six, so that strata
-// have none, one or several; some samples are not radiance (NaN, negative: no data).
+// holes, and guides the sanitize stage repairs: NaN depth and normals, normals too long, an
+// infinite depth gradient), and gradient samples at about one pixel in six, so that strata have
+// none, one or several; some samples are not radiance (NaN, negative: no data).
 Frame random_gradient_frame(int w, int h, uint32_t seed) {
   Frame f = test::flat_frame(w, h);
   f.gradient = Image(w, h, 3);
@@ -301,6 +302,10 @@ Frame random_gradient_frame(int w, int h, uint32_t seed) {
     f.normal.plane(2)[i] = 1.f / n;
     if (odd > 0.02f && odd < 0.025f) f.depth.plane(0)[i] = std::nanf("");
     if (odd > 0.03f && odd < 0.035f) f.normal.plane(1)[i] = std::nanf("");
+    if (odd > 0.04f && odd < 0.045f)
+      for (int c = 0; c < 3; ++c) f.normal.plane(c)[i] *= 2.f;
+    if (odd > 0.05f && odd < 0.055f)
+      f.depth_gradient.plane(1)[i] = std::numeric_limits<float>::infinity();
     if (u(rng) < 1.f / 6.f) {
       const float previous = u(rng) * 2.f, current = u(rng) < 0.3f ? previous : u(rng) * 2.f;
       f.gradient.at(x, y, 0) = odd > 0.5f && odd < 0.51f ? -1.f : previous;
@@ -311,14 +316,35 @@ Frame random_gradient_frame(int w, int h, uint32_t seed) {
   return f;
 }
 
+// `f` with its guides as the sanitize stage leaves them (core/sanitize.h); `repaired`: how many
+// pixels it changed.
+Frame with_sanitized_guides(Frame f, int& repaired) {
+  repaired = 0;
+  for (size_t i = 0; i < f.color.pixel_count(); ++i) {
+    Vec3 n{f.normal.plane(0)[i], f.normal.plane(1)[i], f.normal.plane(2)[i]}, position;
+    repaired += sanitize_guides(f.depth.plane(0)[i], f.depth_gradient.plane(0)[i],
+                                f.depth_gradient.plane(1)[i], n, position, false) != 0;
+    f.normal.plane(0)[i] = n.x;
+    f.normal.plane(1)[i] = n.y;
+    f.normal.plane(2)[i] = n.z;
+  }
+  return f;
+}
+
 // The three stages as three passes (the stratum planes) and as GradientTileKernel's one block
 // kernel give the same lambdas, bit for bit: sizes with partial strata, partial tiles, an image
 // narrower than a tile and one of several tiles each way; every setting the tile kernel takes.
+// The passes run after the sanitize stage; the tile kernel may run before it (CUDA fuses that
+// stage into the demodulation: methods/svgf/pipeline.h) and reads the guides through its rule,
+// so it is given the frame as it was and as the stage leaves it.
 void tile_kernel_matches_the_stages(const TestDevice& d) {
   const SvgfParams p;
   for (const auto& size : {std::pair<int, int>{7, 5}, {61, 37}, {100, 151}, {197, 64}}) {
     const int w = size.first, h = size.second;
-    const Frame f = random_gradient_frame(w, h, static_cast<uint32_t>(w * 1000 + h));
+    const Frame raw = random_gradient_frame(w, h, static_cast<uint32_t>(w * 1000 + h));
+    int repaired = 0;
+    const Frame f = with_sanitized_guides(raw, repaired);
+    if (w * h > 1000) REQUIRE(repaired > 0);
     const int sw = strata_along(w), sh = strata_along(h);
     for (int iterations : {0, 1})
       for (int radius : {0, 1}) {
@@ -365,6 +391,12 @@ void tile_kernel_matches_the_stages(const TestDevice& d) {
         REQUIRE(GradientTileKernel::handles(iterations, radius));
         r.run_blocks(t, t.blocks(), "gradient tiles");
         test::require_identical(fused, three, what + ": lambda, fused against three passes");
+        Image before(sw, sh, 1, -1.f);
+        t.atrous.guides = r.guides(raw);
+        t.lambda = r.plane(before);
+        r.run_blocks(t, t.blocks(), "gradient tiles, guides not yet sanitized");
+        test::require_identical(before, three,
+                                what + ": lambda, fused before the sanitize stage");
         // Something to compare: lambdas strictly between 0 and 1 (and 0 where strata have no
         // sample and nothing spreads it), none outside [0, 1].
         int zero = 0, between = 0, one = 0;

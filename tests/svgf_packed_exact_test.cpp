@@ -7,6 +7,7 @@
 // compare the CUDA denoiser with the CPU's (docs/cuda.md).
 #include <algorithm>
 #include <filesystem>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -31,6 +32,15 @@ struct PackedCpuBackend : cpu::CpuBackend {
   static constexpr bool kPackedStorage = true;
 };
 
+// The same, copying the inputs and leaving the sanitize stage to the denoiser, as the CUDA
+// backend does: the packed flavor then fuses it into its first kernel where it can
+// (methods/svgf/pipeline.h: fuses_sanitize) or runs it first.
+struct PackedCopyingCpuBackend : PackedCpuBackend {
+  explicit PackedCopyingCpuBackend(const EngineConfig& config) : PackedCpuBackend(config) {
+    copies_inputs_ = true;
+  }
+};
+
 // The committed sequences (SVGF_FIXTURES_DIR overrides where they are, as for the GPU tests).
 std::vector<std::string> fixture_dirs() {
   namespace fs = std::filesystem;
@@ -46,16 +56,28 @@ std::vector<std::string> fixture_dirs() {
   return dirs;
 }
 
-// Both denoisers over `frames`; `cut[k]`: reset both before frame k.
-void require_same_bits(const SvgfParams& p, const std::vector<Frame>& frames,
-                       const std::vector<bool>& cut, const std::string& what) {
+void require_same_repairs(const InputRepairs& a, const InputRepairs& b, const std::string& at) {
+  INFO(at);
+  REQUIRE(a.color == b.color);
+  REQUIRE(a.albedo == b.albedo);
+  REQUIRE(a.emission == b.emission);
+  REQUIRE(a.normal == b.normal);
+  REQUIRE(a.surface == b.surface);
+  REQUIRE(a.motion == b.motion);
+}
+
+// The CPU's denoiser and the packed flavor over `Backend` over `frames` (`cut[k]`: reset both
+// before frame k): the output, every debug buffer and the repairs.
+template <class Backend>
+void require_same_bits_over(const SvgfParams& p, const std::vector<Frame>& frames,
+                            const std::vector<bool>& cut, const std::string& what) {
   DenoiserConfig c;
   c.svgf = p;
   c.threads = 2;
   const std::unique_ptr<Denoiser> planes = make_denoiser(c);
   EngineConfig e;
   e.threads = 2;
-  SvgfDenoiser<PackedCpuBackend> packed(p, e);
+  SvgfDenoiser<Backend> packed(p, e);
   for (size_t k = 0; k < frames.size(); ++k) {
     if (k < cut.size() && cut[k]) {
       planes->reset();
@@ -69,7 +91,15 @@ void require_same_bits(const SvgfParams& p, const std::vector<Frame>& frames,
     for (const std::string& name : planes->debug_buffers())
       test::require_identical(packed.read_buffer(name), planes->read_buffer(name),
                               at + ": debug buffer " + name);
+    require_same_repairs(packed.last_report().repairs, planes->last_report().repairs, at);
   }
+}
+
+// Both backends: reading the frame sanitized, and sanitizing a copy in the denoiser's frame.
+void require_same_bits(const SvgfParams& p, const std::vector<Frame>& frames,
+                       const std::vector<bool>& cut, const std::string& what) {
+  require_same_bits_over<PackedCpuBackend>(p, frames, cut, what);
+  require_same_bits_over<PackedCopyingCpuBackend>(p, frames, cut, what + " (sanitized by SVGF)");
 }
 
 std::vector<Frame> synthetic_frames(int n, int width = 61, int height = 37) {
@@ -117,6 +147,34 @@ std::vector<Frame> gradient_frames(std::vector<Frame> frames) {
         f.gradient.at(x, y, 1) = l;
         f.gradient.at(x, y, 2) = 1.f;
       }
+  }
+  return frames;
+}
+
+// Every kind of bad input the sanitize stage repairs, in frames 1 to 3 (each pixel's kind by
+// its index): radiance NaN, Inf, negative; albedo outside [0, 1]; depth NaN and Inf; a depth
+// gradient of Inf; normals too long (renormalized) and zero (background); motion NaN and huge.
+// Some land on the pixels of gradient samples, whose guides the fused gradient launch reads.
+std::vector<Frame> with_bad_inputs(std::vector<Frame> frames) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  for (size_t k = 1; k < frames.size() && k <= 3; ++k) {
+    Frame& f = frames[k];
+    const size_t n = f.color.pixel_count();
+    for (size_t i = 7 * k; i < n; i += 29) {
+      switch ((i / 29 + k) % 10) {
+        case 0: f.color.plane(i % 3)[i] = nan; break;
+        case 1: f.color.plane(0)[i] = inf; break;
+        case 2: f.albedo.plane(1)[i] = (i % 2) ? nan : 1.5f; break;
+        case 3: f.depth.plane(0)[i] = nan; break;
+        case 4: f.depth.plane(0)[i] = inf; break;
+        case 5: f.depth_gradient.plane(i % 2)[i] = inf; break;
+        case 6: for (int c = 0; c < 3; ++c) f.normal.plane(c)[i] *= 2.f; break;
+        case 7: for (int c = 0; c < 3; ++c) f.normal.plane(c)[i] = 0.f; break;
+        case 8: f.motion.plane(0)[i] = nan; break;
+        default: f.motion.plane(1)[i] = -1e9f; break;
+      }
+    }
   }
   return frames;
 }
@@ -170,6 +228,16 @@ TEST_CASE("exact mode over packed storage: the same bits in every branch of the 
   SvgfParams gradient;
   gradient.antilag = Antilag::Gradient;
   require_same_bits(gradient, gradient_frames(frames), cut, "gradient anti-lag");
+  // Bad inputs: the sanitize stage first, or fused into the first kernel with the gradient
+  // launch reading the guides through its rule (the CPU's planes sanitize before anything).
+  require_same_bits(gradient, with_bad_inputs(gradient_frames(frames)), cut,
+                    "gradient anti-lag, bad inputs");
+  require_same_bits(SvgfParams(), with_bad_inputs(frames), cut, "defaults, bad inputs");
+  SvgfParams off;
+  off.antilag = Antilag::Off;
+  require_same_bits(off, with_bad_inputs(frames), cut, "no anti-lag, bad inputs");
+  require_same_bits(split, with_bad_inputs(split_frames(frames)), cut,
+                    "direct and indirect, bad inputs");
   // The packed flavor fuses A-SVGF's stages where the filter is small enough (one step at most,
   // a lambda radius of at most 1: methods/svgf/gradient_tile.h) and runs the three passes
   // otherwise; the planes always run the three.
@@ -177,7 +245,7 @@ TEST_CASE("exact mode over packed storage: the same bits in every branch of the 
     SvgfParams g = gradient;
     g.gradient_iterations = steps;
     g.gradient_lambda_radius = radius;
-    require_same_bits(g, gradient_frames(frames), cut,
+    require_same_bits(g, with_bad_inputs(gradient_frames(frames)), cut,
                       "gradient anti-lag, " + std::to_string(steps) + " step(s), lambda radius " +
                           std::to_string(radius));
   }

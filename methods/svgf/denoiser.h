@@ -78,10 +78,15 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
     // CPU reads them in place): the gradient stages read them before the demodulation writes
     // the illumination (run_svgf_frame, methods/svgf/pipeline.h), so they need no planes of
     // their own.
+    // A backend that sanitizes in its own planes leaves that stage to the frame, which fuses
+    // it into its first kernel where it can (run_svgf_frame).
     float* gradient_into = gradient_mode() ? backend_.plane(illumination_, 0) : nullptr;
-    const FrameInputs cur = backend_.inputs(in, /*position=*/false, split, gradient_into);
+    const FrameInputs cur =
+        backend_.inputs(in, /*position=*/false, split, gradient_into, /*defer_sanitize=*/true);
 
     SvgfFrameBuffers b = signal_buffers(cur, 0, backend_.output(out));
+    b.sanitize_pending = cur.sanitize_pending;
+    b.sanitize = cur.sanitize;
     // The depth the reprojection compares: where the camera moved, the previous camera's.
     b.previous_depth = params_.reproject_camera_depth && has_history_
                            ? PreviousViewDepth::between(previous_camera_, in.camera, in.width(),

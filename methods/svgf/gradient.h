@@ -75,6 +75,22 @@ SVGF_HD StratumGuide stratum_guide(const GuideView& g, int p) {
   return StratumGuide{EdgeSample{g.depth[p], g.normal.load(p), 0.f}, g.mesh_id[p]};
 }
 
+// The same at a pixel of planes the sanitize stage may not have passed yet, as it would leave
+// them (its guide rule, core/sanitize.h: nothing changes on planes it passed), with the depth's
+// fwidth: what the fused gradient launch reads where the frame's sanitize stage is fused into
+// the launch after it (methods/svgf/gradient_tile.h, pipeline.h).
+struct SanitizedGuide {
+  StratumGuide guide;
+  float depth_fwidth;
+};
+SVGF_HD SanitizedGuide sanitized_stratum_guide(const GuideView& g, int p) {
+  float depth = g.depth[p], dx = g.depth_dx[p], dy = g.depth_dy[p];
+  Vec3 normal = g.normal.load(p), position;
+  sanitize_guides(depth, dx, dy, normal, position, /*has_position=*/false);
+  return SanitizedGuide{StratumGuide{EdgeSample{depth, normal, 0.f}, g.mesh_id[p]},
+                        depth_fwidth_of(dx, dy)};
+}
+
 // One stratum's filtered quantities, as a stage stores them in GradientPlanes.
 struct StratumValue {
   float delta = 0.f, normalizer = 0.f, weight = 0.f;

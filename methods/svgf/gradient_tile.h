@@ -80,12 +80,11 @@ struct GradientTileKernel {
       return sx >= 0 && sy >= 0 && sx < strata_width && sy < strata_height;
     };
     // 1. The samples of the tile and its halo (strata outside the image are never read) and,
-    //    where an a-trous step reads them, their guides; the depth's fwidth only where a
-    //    stratum is filtered (the taps' centre).
+    //    where an a-trous step reads them, their guides, as the sanitize stage leaves them (it
+    //    may run after this launch: pipeline.h).
     b.rows([&](int r) {
       if (r >= kSampleCells) return;
-      const int cx = r % kSpan, cy = r / kSpan;
-      const int sx = input.x0 + cx, sy = input.y0 + cy;
+      const int sx = input.x0 + r % kSpan, sy = input.y0 + r / kSpan;
       if (!inside(sx, sy)) return;
       const GradientSamplesKernel::Sample m = samples.sample(sx, sy);
       float* const c = cells + r;
@@ -94,14 +93,13 @@ struct GradientTileKernel {
       c[kWeight * kSampleCells] = m.value.weight;
       if (iterations == 0) return;
       const int p = StratumGuides::pixel_at(samples.width, sx, sy, m.guide);
-      const StratumGuide g = stratum_guide(atrous.guides, p);
-      c[kDepth * kSampleCells] = g.edge.depth;
-      c[kNormalX * kSampleCells] = g.edge.normal.x;
-      c[kNormalY * kSampleCells] = g.edge.normal.y;
-      c[kNormalZ * kSampleCells] = g.edge.normal.z;
-      c[kMesh * kSampleCells] = bits_float(g.mesh);
-      const bool centre = cx > 0 && cy > 0 && cx < kSpan - 1 && cy < kSpan - 1;
-      if (centre) c[kDepthFwidth * kSampleCells] = atrous.guides.depth_fwidth(p);
+      const SanitizedGuide g = sanitized_stratum_guide(atrous.guides, p);
+      c[kDepth * kSampleCells] = g.guide.edge.depth;
+      c[kNormalX * kSampleCells] = g.guide.edge.normal.x;
+      c[kNormalY * kSampleCells] = g.guide.edge.normal.y;
+      c[kNormalZ * kSampleCells] = g.guide.edge.normal.z;
+      c[kMesh * kSampleCells] = bits_float(g.guide.mesh);
+      c[kDepthFwidth * kSampleCells] = g.depth_fwidth;
     });
     // 2. The own lambda of each stratum of the tile and a 1-stratum halo: of its filtered
     //    value, or (no a-trous step) of its sample.

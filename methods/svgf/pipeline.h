@@ -65,6 +65,10 @@ struct SvgfFrameBuffers {
   RgbView remodulated;
   ConstRgbView prev_taa;
   RgbView next_taa;
+  // The inputs' sanitize rule, in place, where the backend left it to the frame (FrameInputs::
+  // sanitize_pending): run first, or fused into the first pixel kernel (run_svgf_frame).
+  bool sanitize_pending = false;
+  SanitizeInputs sanitize;
 
   size_t pixels() const { return static_cast<size_t>(guides.width) * guides.height; }
   size_t stratum_count() const {
@@ -242,12 +246,33 @@ inline ReprojectKernel reproject_kernel_for(const SvgfFrameBuffers& b, const Svg
   return k;
 }
 
+// Whether the frame's sanitize stage can ride on the flavor's first pixel kernel (demodulate +
+// reproject + guide packing): every stage before it and that kernel read the inputs of their
+// own pixel only, or apply the rule where they read (GradientTileKernel). Not where the
+// statistics anti-lag reads the neighbourhood's color, where A-SVGF's three passes read the
+// guides, or where a second signal (direct and indirect) would read the inputs after it.
+// For a flavor that fuses the reprojection and A-SVGF's stages (the packed flavors; the bench
+// counts costs by it, bench/stage_cost.cpp).
+inline bool sanitize_fusable(const SvgfParams& p, bool has_history, bool gradient, bool split) {
+  if (split) return false;
+  if (gradient) return GradientTileKernel::handles(p.gradient_iterations, p.gradient_lambda_radius);
+  const bool statistics = p.antilag == Antilag::Statistics || p.antilag == Antilag::Gradient;
+  return !(has_history && statistics);
+}
+template <class Flavor>
+bool fuses_sanitize(const SvgfParams& p, bool has_history, bool gradient, bool split) {
+  return Flavor::kFusedReprojection && Flavor::kFusedGradient &&
+         sanitize_fusable(p, has_history, gradient, split);
+}
+
 // Stages 1 to 5 for one signal (the frame's color, or its direct or indirect part): its
 // history, its variance, its filter; the remodulated result goes to `out`. `lambda`: A-SVGF's
-// per-stratum lambda, or null.
+// per-stratum lambda, or null. `sanitize`: the inputs' sanitize rule to fuse into the first
+// kernel (its repairs are the frame's tallies), or null.
 template <class Flavor, class Engine>
 void run_svgf_signal(Engine& engine, const SvgfFrameBuffers& buffers, const SvgfParams& p,
-                     bool has_history, const float* lambda, RgbView out) {
+                     bool has_history, const float* lambda, RgbView out,
+                     const SanitizeInputs* sanitize = nullptr) {
   namespace stage = svgf_stage;
   // Without a feedback tap in range the next frame's color history is the accumulation itself:
   // the reprojection writes its color there, and no pass copies it (the variance reads it from
@@ -269,11 +294,12 @@ void run_svgf_signal(Engine& engine, const SvgfFrameBuffers& buffers, const Svgf
   //    Fused, the same thread reprojects the illumination it just wrote, and packs the guides.
   //    Unfused with packed guides, the demodulation packs them.
   const PackGuidesKernel pack{b.guides, reinterpret_cast<Packed4*>(b.packed_guides)};
+  //    With the sanitize stage fused, the same thread first repairs its pixel's inputs in place.
   if constexpr (Flavor::kFusedReprojection) {
-    engine.run(stage::kDemodulate,
-               then(demodulate_kernel_for(b, p),
-                    then(reproject_kernel_for(b, p, has_history, lambda), pack)),
-               w, h);
+    const auto first = then(demodulate_kernel_for(b, p),
+                            then(reproject_kernel_for(b, p, has_history, lambda), pack));
+    if (sanitize) engine.run_tallying(stage::kDemodulate, then(*sanitize, first), w, h);
+    else engine.run(stage::kDemodulate, first, w, h);
   } else {
     if constexpr (kPacksGuides<Flavor>)
       engine.run(stage::kDemodulate, then(demodulate_kernel_for(b, p), pack), w, h);
@@ -344,13 +370,21 @@ void run_svgf_frame(Engine& engine, const SvgfFrameBuffers& b, const SvgfParams&
   //    Without samples the reprojection falls back to the statistics anti-lag. The samples may
   //    lie in the illumination's planes (the denoiser lends them to a backend that copies its
   //    inputs): these stages run before the demodulation writes the illumination.
+  //    Where the backend left the inputs' sanitize stage to the frame, it runs first, or rides
+  //    on the demodulation's kernel where nothing before that reads the inputs unsanitized
+  //    (fuses_sanitize: the fused gradient launch reads the guides through the rule).
   const bool gradient = runs_gradient_stages(b, p, has_history);
+  const bool fused_sanitize =
+      b.sanitize_pending && fuses_sanitize<Flavor>(p, has_history, gradient, indirect != nullptr);
+  if (b.sanitize_pending && !fused_sanitize)
+    engine.run_tallying(kSanitizeStage, b.sanitize, w, h);
   if (gradient) run_gradient_stages<Flavor>(engine, b, p);
   const float* lambda = gradient ? b.gradient_lambda() : nullptr;
 
   // 1-5. The signal(s) -> the remodulated color (TAA's input when TAA is on).
   const RgbView remodulated = p.taa ? b.remodulated : b.output;
-  run_svgf_signal<Flavor>(engine, b, p, has_history, lambda, remodulated);
+  run_svgf_signal<Flavor>(engine, b, p, has_history, lambda, remodulated,
+                          fused_sanitize ? &b.sanitize : nullptr);
   if (indirect) {
     run_svgf_signal<Flavor>(engine, *indirect, p.indirect(), has_history, lambda,
                             indirect->output);
