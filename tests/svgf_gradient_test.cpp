@@ -322,7 +322,7 @@ Frame with_sanitized_guides(Frame f, int& repaired) {
   repaired = 0;
   for (size_t i = 0; i < f.color.pixel_count(); ++i) {
     Vec3 n{f.normal.plane(0)[i], f.normal.plane(1)[i], f.normal.plane(2)[i]}, position;
-    repaired += sanitize_guides(f.depth.plane(0)[i], f.depth_gradient.plane(0)[i],
+    repaired += sanitize_guides(0u, f.depth.plane(0)[i], f.depth_gradient.plane(0)[i],
                                 f.depth_gradient.plane(1)[i], n, position, false) != 0;
     f.normal.plane(0)[i] = n.x;
     f.normal.plane(1)[i] = n.y;

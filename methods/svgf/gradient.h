@@ -86,7 +86,7 @@ struct SanitizedGuide {
 SVGF_HD SanitizedGuide sanitized_stratum_guide(const GuideView& g, int p) {
   float depth = g.depth[p], dx = g.depth_dx[p], dy = g.depth_dy[p];
   Vec3 normal = g.normal.load(p), position;
-  sanitize_guides(depth, dx, dy, normal, position, /*has_position=*/false);
+  sanitize_guides(0u, depth, dx, dy, normal, position, /*has_position=*/false);
   return SanitizedGuide{StratumGuide{EdgeSample{depth, normal, 0.f}, g.mesh_id[p]},
                         depth_fwidth_of(dx, dy)};
 }
