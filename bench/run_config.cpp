@@ -185,8 +185,6 @@ RunConfig run_config(const std::string& method) {
   return c;
 }
 
-namespace {
-
 RunConfig project_config(const std::string& method, Backend backend, Mode mode, int threads) {
   RunConfig c = run_config(method);
   c.denoiser.backend = backend;
@@ -194,8 +192,6 @@ RunConfig project_config(const std::string& method, Backend backend, Mode mode, 
   c.denoiser.threads = threads;
   return c;
 }
-
-}  // namespace
 
 RunConfig svgf_config(Backend backend, Mode mode, int iterations, int feedback_tap, int threads) {
   RunConfig c = project_config("svgf", backend, mode, threads);

@@ -29,6 +29,8 @@ struct RunConfig {
 
 // A --method value with that method's defaults; std::invalid_argument listing the known names.
 RunConfig run_config(const std::string& method);
+// That method's defaults on a backend, mode and thread count (0: all).
+RunConfig project_config(const std::string& method, Backend backend, Mode mode, int threads);
 RunConfig svgf_config(Backend backend, Mode mode, int iterations, int feedback_tap, int threads);
 // SVGF's named configurations beside the defaults (methods/svgf/params.h: svgf_preset): the
 // paper's, converge, converge with the anti-lag, and the defaults with TAA.
