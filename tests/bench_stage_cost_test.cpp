@@ -1134,7 +1134,7 @@ TEST_CASE("stage cost: BMFR is counted in every stage, its regression a row of i
         ops(Mode::Exact, noise, bmfr_stage::kAccumulate, 1));
 }
 
-TEST_CASE("stage cost: the sanitize stage counted in the demodulation's kernel where it rides there",
+TEST_CASE("stage cost: the sanitize stage counted in the demodulation's kernel where it rides",
           "[bench][stage_cost]") {
   // methods/svgf/pipeline.h, fuses_sanitize: fast mode and CUDA's exact mode run the sanitize
   // rule in the demodulate + reproject kernel unless something before it reads the inputs (the
@@ -1174,12 +1174,15 @@ TEST_CASE("stage cost: the sanitize stage counted in the demodulation's kernel w
     }
     // Where it rides: its tests added, and on background the planes only it reads (a split
     // frame's kernel, otherwise the same, carries none of it).
-    const bench::StageCost with = bench::stage_cost(Mode::Fast, Stage::Demodulate, gradient, samples);
-    const bench::StageCost without = bench::stage_cost(Mode::Fast, Stage::Demodulate, gradient, split);
+    const auto demodulate = [&](Mode mode, const bench::FrameTraits& f) {
+      return bench::stage_cost(mode, Stage::Demodulate, gradient, f);
+    };
+    const bench::StageCost with = demodulate(Mode::Fast, samples);
+    const bench::StageCost without = demodulate(Mode::Fast, split);
     CHECK(with.ops - without.ops == Approx(alone.ops));
     CHECK(with.read - without.read == (surface > 0 ? 0.0 : 4 * 4));
     CHECK(with.written == without.written);
-    const bench::StageCost exact = bench::stage_cost(Mode::Exact, Stage::Demodulate, gradient, packed);
+    const bench::StageCost exact = demodulate(Mode::Exact, packed);
     CHECK(exact.ops == with.ops);
     CHECK(exact.read == with.read);
   }

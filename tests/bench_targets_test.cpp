@@ -239,7 +239,8 @@ TEST_CASE("issue 6's memory-bound stages: a stage counted inside another's launc
   Results r;
   r.suites["gpu"] = gpu;
   const std::vector<TargetResult> all = evaluate_targets(targets, r);
-  for (const char* id : {"gpu-fast-1080p-memory-bound-stages", "gpu-exact-1080p-memory-bound-stages"}) {
+  for (const char* id :
+       {"gpu-fast-1080p-memory-bound-stages", "gpu-exact-1080p-memory-bound-stages"}) {
     INFO(id);
     const auto rows = results_of(all, id);
     REQUIRE(rows.size() == 1);
