@@ -338,9 +338,8 @@ StageCost fused_gradient_cost(Stage stage, const SvgfParams& p, const FrameTrait
 // Whether the sanitize stage rides on the demodulation's kernel in a steady frame (fast mode
 // and CUDA's exact mode: methods/svgf/pipeline.h, fuses_sanitize); it is then counted there.
 bool sanitize_fused(Mode mode, const SvgfParams& p, const FrameTraits& f) {
-  const bool gradient = p.antilag == Antilag::Gradient && f.gradient_samples;
   return (mode == Mode::Fast || f.packed_exact) &&
-         sanitize_fusable(p, /*has_history=*/true, gradient, f.split);
+         sanitize_fusable(p, /*has_history=*/true, gradient_runs(p, f), f.split);
 }
 
 // Demodulate + reproject + guide packing in one kernel (fast mode, and CUDA's exact mode:
