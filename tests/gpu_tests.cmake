@@ -15,6 +15,7 @@ if(TARGET svgf_cuda)
   target_include_directories(svgf_gpu_tests PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
   target_compile_definitions(svgf_gpu_tests PRIVATE SVGF_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     SVGF_HAVE_CUDA=1)
+  svgf_tests_at_o1(svgf_gpu_tests)
   add_test(NAME svgf_gpu_tests COMMAND svgf_gpu_tests)
   set_tests_properties(svgf_gpu_tests PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 900)
 endif()

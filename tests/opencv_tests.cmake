@@ -1,5 +1,9 @@
 # OpenCV cross-checks (docs/opencv-checks.md): OpenCV as the independent check on every stage,
 # each check on the CPU and on CUDA exact (tests/test_device.h).
+# SVGF_BUILD_OPENCV_TESTS=OFF: the sanitized build leaves them out (docs/sanitizers.md).
+if(NOT SVGF_BUILD_OPENCV_TESTS)
+  return()
+endif()
 find_package(OpenCV REQUIRED COMPONENTS core imgproc quality ximgproc)
 
 svgf_add_device_tests(svgf_opencv_tests
