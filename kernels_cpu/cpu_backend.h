@@ -26,6 +26,8 @@
 //                                          after one frame; its depth gradient and motion are
 //                                          not kept: null)
 //   RgbView output(out)                    where the frame's output goes
+//   set_output_over_color()                the method reads the input color only before it
+//                                          writes the output: the output may take its planes
 //   void finish(frame, out)                after the frame: output to the host, guides kept
 #include <algorithm>
 #include <string>
@@ -99,9 +101,11 @@ class CpuBackend {
   FrameInputs inputs(const Frame& f, bool position = false, bool split = false,
                      float* gradient_into = nullptr, bool defer_sanitize = false) {
     FrameInputs in;
+    lent_color_ = {};
     if (defer_sanitize && copies_inputs_) {
       in = copied_inputs(f, position, split);
       in.sanitize_pending = true;
+      if (output_over_color_) lent_color_ = repaired_.rgb(kColor);
     } else {
       SanitizeInputs scan{width_, input_planes(f, position, split), {}};
       engine_.run_tallying(kSanitizeStage, scan, width_, height_);
@@ -140,12 +144,23 @@ class CpuBackend {
     return g;
   }
 
+  // The CUDA backend lends the output the input color's planes where the method asks
+  // (kernels_cuda/cuda_backend.h). This one reads the frame in place and writes the output
+  // into the caller's image; its copying stand-in for CUDA (copies_inputs_) lends its copy of
+  // the color, so that the CPU tests hold the method to the order the lending relies on.
+  void set_output_over_color() { output_over_color_ = true; }
   RgbView output(Image& out) {
     out.ensure_shape(width_, height_, 3);  // every pixel is written by the frame
-    return out.rgb();
+    return lent_color_.r ? lent_color_ : out.rgb();
   }
 
-  void finish(const Frame& f, Image&) {
+  void finish(const Frame& f, Image& out) {
+    if (lent_color_.r) {
+      const size_t n = static_cast<size_t>(width_) * height_;
+      std::copy(lent_color_.r, lent_color_.r + n, out.plane(0));
+      std::copy(lent_color_.g, lent_color_.g + n, out.plane(1));
+      std::copy(lent_color_.b, lent_color_.b + n, out.plane(2));
+    }
     if (prev_planes_.empty()) return;  // no method here reads the previous guides
     const size_t n = f.color.pixel_count();
     const GuideView& g = current_guides_;  // sanitized
@@ -196,11 +211,12 @@ class CpuBackend {
     return r;
   }
 
+  // The planes of repaired_.
+  enum CopiedPlane : int { kColor = 0, kAlbedo = 3, kNormal = 6, kDepth = 9, kDepthDx, kDepthDy,
+                           kMotionX, kMotionY, kEmission = 14, kPosition = 17, kDirect = 20,
+                           kIndirect = 23, kPlanes = 26 };
   // A copy of the frame's inputs, and the sanitize rule in place over it (not run).
   FrameInputs copied_inputs(const Frame& f, bool position, bool split) {
-    enum : int { kColor = 0, kAlbedo = 3, kNormal = 6, kDepth = 9, kDepthDx, kDepthDy, kMotionX,
-                 kMotionY, kEmission = 14, kPosition = 17, kDirect = 20, kIndirect = 23,
-                 kPlanes = 26 };
     if (repaired_.width() != width_ || repaired_.height() != height_)
       repaired_ = Image(width_, height_, kPlanes);
     const size_t n = f.color.pixel_count();
@@ -279,6 +295,8 @@ class CpuBackend {
   Image repaired_;     // the inputs of a frame that needed repairs, or copied (copies_inputs_)
   GuideView current_guides_;
   std::vector<uint32_t> prev_mesh_id_;
+  bool output_over_color_ = false;  // set_output_over_color
+  RgbView lent_color_;              // this frame's output, where it is the copied color
 
  protected:
   // Copy every frame's inputs and leave the sanitize stage to a method that asks to run it

@@ -66,7 +66,7 @@ class CudaBackend {
     try {
       for (int s = 0; s < 2; ++s) allocate(guides_[s], kKeptPlanes, "frame guides");
       allocate(shading_, kShadingPlanes, "frame inputs");
-      allocate(output_, 3, "output");
+      if (!output_over_color_) allocate(output_, 3, "output");
       staging_in_.resize(kInputPlanes * pixels(), "the pinned input staging buffer");
       staging_out_.resize(3 * pixels(), "the pinned output staging buffer");
     } catch (...) {
@@ -90,13 +90,18 @@ class CudaBackend {
 
   // How many float planes of the frame's size the method allocates (for the error message).
   void set_method_planes(int planes) { method_planes_ = planes; }
+  // The method reads the input color only in stages that have finished before it writes any
+  // pixel of the output (SVGF: the demodulation and the reprojection), so the output may take
+  // the color's planes and the backend keeps none of its own: 3 planes fewer (issue 14 item
+  // 5). Set before the first frame (the denoiser's constructor).
+  void set_output_over_color() { output_over_color_ = true; }
 
   // `what` and what the whole frame size needs name the buffer in an out-of-memory error.
   // Zero-filled, as the CPU's: a buffer a method fills only in part (BMFR's per-block data)
   // reads back defined.
   void allocate(Buffer& b, int channels, const char* what) {
-    const size_t planes =
-        static_cast<size_t>(2 * kKeptPlanes + kShadingPlanes + 3 + method_planes_);
+    const size_t planes = static_cast<size_t>(2 * kKeptPlanes + kShadingPlanes +
+                                              (output_over_color_ ? 0 : 3) + method_planes_);
     const size_t mib = (planes * pixels() * sizeof(float) + (1u << 20) - 1) >> 20;
     const std::string named = std::string(what) + " (" + std::to_string(width_) + "x" +
                               std::to_string(height_) + " frames need about " +
@@ -246,14 +251,16 @@ class CudaBackend {
     g.mesh_id = reinterpret_cast<const uint32_t*>(plane(guides_[1 - slot_], kMeshId));
     return g;
   }
-  RgbView output(Image&) { return rgb(output_, 0); }
-  RgbView output(const DeviceTarget&) { return rgb(output_, 0); }
+  RgbView output(Image&) { return output_view(); }
+  RgbView output(const DeviceTarget&) { return output_view(); }
 
   // Downloads the output and waits for the frame (raising any fault of its kernels).
   void finish(const Frame&, Image& out) {
     const size_t n = pixels();
     engine_.mark(kDownloadStage);
-    output_.download_async(staging_out_.get(), 3 * n, engine_.stream());
+    SVGF_CUDA_CHECK(cudaMemcpyAsync(staging_out_.get(), output_plane(0), 3 * n * sizeof(float),
+                                    cudaMemcpyDeviceToHost, engine_.stream()),
+                    "download of the output");
     engine_.end_frame();
     out.ensure_shape(width_, height_, 3);  // overwritten whole by the copy below
     host_copies_.add(out.data().data(), staging_out_.get(), 3 * n * sizeof(float));
@@ -265,7 +272,7 @@ class CudaBackend {
   void finish(const DeviceFrame&, const DeviceTarget& out) {
     StridedCopy copy;
     for (int c = 0; c < 3; ++c)
-      copy.add(StridedCopy::to_view(plane(output_, c), width_, out.image, c));
+      copy.add(StridedCopy::to_view(output_plane(c), width_, out.image, c));
     engine_.run(kCopyOutStage, copy, width_, height_);
     engine_.end_frame_async();
     slot_ = 1 - slot_;
@@ -415,6 +422,13 @@ class CudaBackend {
     g.motion_y = input_plane(kMotionY);
     return g;
   }
+  // The output's planes: the input color's (set_output_over_color; three neighbouring planes
+  // of shading_, so the host path downloads them in one copy) or the backend's own.
+  static_assert(kColor >= kKeptPlanes, "the color's planes lie in shading_, one after another");
+  float* output_plane(int c) const {
+    return output_over_color_ ? input_plane(kColor + c) : plane(output_, c);
+  }
+  RgbView output_view() const { return {output_plane(0), output_plane(1), output_plane(2)}; }
   // An input plane of this frame, in whichever buffer holds it.
   float* input_plane(int p) const {
     return p < kKeptPlanes ? plane(guides_[slot_], p) : plane(shading_, p - kKeptPlanes);
@@ -427,6 +441,7 @@ class CudaBackend {
   int width_ = 0, height_ = 0;
   int slot_ = 0;  // input slot the next frame is uploaded into
   int method_planes_ = 0;
+  bool output_over_color_ = false;  // set_output_over_color
   // The depth, normal and mesh id of this frame and the previous one (the methods read those
   // of the previous frame through previous_guides(), nothing else of it), and this frame's
   // other inputs once but for the gradient samples (in the method's lent planes): 2 x 5 + 13

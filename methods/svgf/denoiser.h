@@ -27,6 +27,10 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
     backend_.set_method_planes(2 * (3 + 2 + 1 + 4) + 3 + (accumulates_color() ? 4 : 1) +
                                (packs_guides() ? 4 : 0) +
                                (gradient_mode() ? 1 : 0) + (params_.taa ? 3 * 3 : 0));
+    // The frame reads the input color in the demodulation and the reprojection only, both done
+    // before the remodulation (or TAA) writes the first output pixel (run_svgf_frame): the
+    // output may take the color's planes on a backend that copies its inputs.
+    backend_.set_output_over_color();
   }
 
   void reset() override { has_history_ = false; }
