@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "metrics/display_range.h"
 #include "metrics/flip.h"
 #include "metrics/image_metrics.h"
 #include "metrics/ssim.h"
@@ -11,7 +12,7 @@
 namespace svgf::bench {
 namespace {
 
-double clamp01(double v) { return std::isnan(v) ? 0.0 : std::min(1.0, std::max(0.0, v)); }
+using metrics::clamp01;
 
 void check_same(const Image& a, const Image& b) {
   if (a.width() != b.width() || a.height() != b.height() || a.channels() < 3 || b.channels() < 3)

@@ -32,14 +32,6 @@ constexpr int kFormatVersion = 1;
 
 static_assert(sizeof(unsigned int) == sizeof(uint32_t), "OpenEXR UINT is unsigned int");
 
-// IoError messages are one line; Iex messages sometimes span several.
-std::string one_line(std::string s) {
-  for (char& c : s)
-    if (c == '\n' || c == '\r') c = ' ';
-  while (!s.empty() && s.back() == ' ') s.pop_back();
-  return s;
-}
-
 const char* type_name(Imf::PixelType t) {
   switch (t) {
     case Imf::UINT: return "UINT";

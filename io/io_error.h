@@ -11,4 +11,13 @@ class IoError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A library's message (OpenEXR's Iex, libpng's) as one line of an IoError: line breaks become
+// spaces, trailing spaces go.
+inline std::string one_line(std::string s) {
+  for (char& c : s)
+    if (c == '\n' || c == '\r') c = ' ';
+  while (!s.empty() && s.back() == ' ') s.pop_back();
+  return s;
+}
+
 }  // namespace svgf::io

@@ -5,10 +5,10 @@
 #include <limits>
 #include <stdexcept>
 
+#include "metrics/display_range.h"
+
 namespace svgf::metrics {
 namespace {
-
-double clamp01(double v) { return std::isnan(v) ? 0.0 : std::min(1.0, std::max(0.0, v)); }
 
 void check_same(const Image& a, const Image& b, const char* what) {
   if (a.width() != b.width() || a.height() != b.height() || a.channels() < 3 ||

@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "metrics/display_range.h"
 #include "metrics/separable_filter.h"
 
 namespace svgf::metrics {
@@ -55,8 +56,6 @@ constexpr double kWhite[3] = {0.4124564 + 0.3575761 + 0.1804375, 0.2126729 + 0.7
                               0.0193339 + 0.1191920 + 0.9503041};
 
 using Planes = std::array<std::vector<double>, 3>;
-
-double clamp01(double v) { return std::isnan(v) ? 0.0 : std::min(1.0, std::max(0.0, v)); }
 
 void mul3(const double m[3][3], const double in[3], double out[3]) {
   for (int r = 0; r < 3; ++r) out[r] = m[r][0] * in[0] + m[r][1] * in[1] + m[r][2] * in[2];

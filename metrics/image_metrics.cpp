@@ -5,6 +5,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "metrics/display_range.h"
+
 namespace svgf::metrics {
 namespace {
 
@@ -13,8 +15,6 @@ void check_same_size(const Image& a, const Image& b) {
       b.channels() < 3)
     throw std::invalid_argument("metrics: images differ in size or have fewer than 3 channels");
 }
-
-double clamp01(double v) { return std::isnan(v) ? 0.0 : std::min(1.0, std::max(0.0, v)); }
 
 }  // namespace
 

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "metrics/display_range.h"
 #include "metrics/separable_filter.h"
 
 namespace svgf::metrics {
@@ -14,8 +15,6 @@ constexpr int kRadius = 5;  // 11x11 window
 constexpr double kSigma = 1.5;
 constexpr double kC1 = 0.01 * 0.01;  // (K1 L)^2 with L = 1
 constexpr double kC2 = 0.03 * 0.03;  // (K2 L)^2
-
-double clamp01(double v) { return std::isnan(v) ? 0.0 : std::min(1.0, std::max(0.0, v)); }
 
 std::vector<double> gaussian_window() {
   std::vector<double> k(2 * kRadius + 1);
