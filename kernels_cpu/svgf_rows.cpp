@@ -1,6 +1,7 @@
 #include "kernels_cpu/svgf_rows.h"
 
 #include <algorithm>
+#include <type_traits>
 #include <vector>
 
 #include "kernels_cpu/row_tools.h"
@@ -8,36 +9,24 @@
 namespace svgf::cpu {
 namespace {
 
-// One a-trous tap (dx, dy) for pixels x0..x1 of a row: i indexes the centre, j = i + offset the
-// tap. The body is the per-pixel kernel's loop body.
-template <class Power>
-SVGF_TAP_LOOP void atrous_tap(const float* __restrict depth, const float* __restrict nx,
-                const float* __restrict ny, const float* __restrict nz,
-                const float* __restrict lum, const float* __restrict cr,
-                const float* __restrict cg, const float* __restrict cb,
-                const float* __restrict var_in, const float* __restrict inv_phi_z,
-                const float* __restrict inv_phi_l, float* __restrict sw, float* __restrict sr,
-                float* __restrict sg, float* __restrict sb, float* __restrict sv, int row,
-                int offset, int x0, int x1, float inv_dist, float kw, const Power& power) {
-  for (int x = x0; x < x1; ++x) {
-    const int i = row + x, j = row + offset + x;
-    const EdgeSample c{depth[i], make_vec3(nx[i], ny[i], nz[i]), lum[i]};
-    const EdgeSample q{depth[j], make_vec3(nx[j], ny[j], nz[j]), lum[j]};
-    const float wt =
-        edge_stopping_weight<RowExactArith>(c, q, inv_phi_z[x] * inv_dist, power, inv_phi_l[x]) *
-        kw;
-    sw[x] = sw[x] + wt;
-    sr[x] = sr[x] + cr[j] * wt;
-    sg[x] = sg[x] + cg[j] * wt;
-    sb[x] = sb[x] + cb[j] * wt;
-    sv[x] = sv[x] + var_in[j] * (wt * wt);
-  }
-}
+// Which pixels of a row an a-trous tap row runs over (atrous_tap_row).
+enum class TapColumns {
+  kInterior,  // pixels whose five taps all lie inside the image: no tests
+  kBorder,    // pixels at either end of the row: a tap column outside is skipped, as the
+              // per-pixel kernel skips it (loaded anyway, from the neighbouring row, and its
+              // terms not added: a select, not a branch, so the loop stays vector code)
+  kBorderClamped,  // the same where such a load would leave the image: loaded clamped into
+                   // the row (a gather; GCC 12 leaves this one scalar)
+};
 
-// The five taps dx = -2..2 of one a-trous tap row, for pixels x0..x1 whose five taps all lie
-// inside the image: the same terms in the same order as five atrous_tap calls, with the centre
-// and the running sums held in registers across the five (half the loads and stores).
-template <class Power, bool kCentreRow>
+// The five taps dx = -2..2 of one a-trous tap row for pixels x0..x1 of a row w wide, in the
+// per-pixel kernel's order, with the centre and the running sums held in registers across the
+// five (half the loads and stores of a loop a tap). The border kinds add only to the pixels
+// active0..active1 (the others' sums are stored back as they were loaded): a border is 2 to
+// 16 pixels at the default 4 iterations, too few for one 16-lane vector, so the caller widens
+// the loop to a vector's worth (as single-tap loops the border pixels were scalar code, 2% of
+// a frame).
+template <class Power, bool kCentreRow, TapColumns kColumns = TapColumns::kInterior>
 SVGF_TAP_LOOP void atrous_tap_row(const float* __restrict depth, const float* __restrict nx,
                                   const float* __restrict ny, const float* __restrict nz,
                                   const float* __restrict lum, const float* __restrict cr,
@@ -47,26 +36,36 @@ SVGF_TAP_LOOP void atrous_tap_row(const float* __restrict depth, const float* __
                                   const float* __restrict inv_phi_l, float* __restrict sw,
                                   float* __restrict sr, float* __restrict sg,
                                   float* __restrict sb, float* __restrict sv, int row,
-                                  int row_offset, int step, int x0, int x1, const float* inv_dist,
-                                  const float* kw, const Power& power) {
+                                  int row_offset, int step, int x0, int x1, int active0,
+                                  int active1, int w, const float* inv_dist, const float* kw,
+                                  const Power& power) {
+  constexpr bool kTests = kColumns != TapColumns::kInterior;
+  constexpr bool kClamp = kColumns == TapColumns::kBorderClamped;
   const float d[5] = {inv_dist[0], inv_dist[1], inv_dist[2], inv_dist[3], inv_dist[4]};
   const float k[5] = {kw[0], kw[1], kw[2], kw[3], kw[4]};
   for (int x = x0; x < x1; ++x) {
     const int i = row + x;
     const EdgeSample c{depth[i], make_vec3(nx[i], ny[i], nz[i]), lum[i]};
     const float ipz = inv_phi_z[x], ipl = inv_phi_l[x];
+    const bool active = !kTests || ((x >= active0) & (x < active1));
     float w_sum = sw[x], r_sum = sr[x], g_sum = sg[x], b_sum = sb[x], v_sum = sv[x];
 #pragma GCC unroll 5
     for (int t = 0; t < 5; ++t) {
       if (kCentreRow && t == 2) continue;  // the centre tap is already in the sums
-      const int j = i + row_offset + (t - 2) * step;
+      const int xq = x + (t - 2) * step;
+      const bool take = !kTests || (active & (xq >= 0) & (xq < w));
+      const int j = kClamp ? row + row_offset + (xq < 0 ? 0 : (xq >= w ? w - 1 : xq))
+                           : i + row_offset + (t - 2) * step;
       const EdgeSample q{depth[j], make_vec3(nx[j], ny[j], nz[j]), lum[j]};
       const float wt = edge_stopping_weight<RowExactArith>(c, q, ipz * d[t], power, ipl) * k[t];
-      w_sum = w_sum + wt;
-      r_sum = r_sum + cr[j] * wt;
-      g_sum = g_sum + cg[j] * wt;
-      b_sum = b_sum + cb[j] * wt;
-      v_sum = v_sum + var_in[j] * (wt * wt);
+      // Every load unconditional (GCC 12 vectorizes no loop with a load under a condition).
+      const float w_with = w_sum + wt, r_with = r_sum + cr[j] * wt, g_with = g_sum + cg[j] * wt,
+                  b_with = b_sum + cb[j] * wt, v_with = v_sum + var_in[j] * (wt * wt);
+      w_sum = take ? w_with : w_sum;
+      r_sum = take ? r_with : r_sum;
+      g_sum = take ? g_with : g_sum;
+      b_sum = take ? b_with : b_sum;
+      v_sum = take ? v_with : v_sum;
     }
     sw[x] = w_sum;
     sr[x] = r_sum;
@@ -205,8 +204,8 @@ void atrous_row(const AtrousKernel& k, const float* __restrict lum, int y, RowSc
   const float* __restrict cr = k.in.color.r;
   const float* __restrict cg = k.in.color.g;
   const float* __restrict cb = k.in.color.b;
-  // Pixels whose 5 taps in x all lie inside take the five taps of a tap row at once; the border
-  // pixels on either side take them one at a time. Each pixel still adds dx = -2..2 in order.
+  // Pixels whose 5 taps in x all lie inside take a tap row's five without tests; the border
+  // pixels on either side, with a test a tap. Each pixel adds dx = -2..2 in order.
   const int inner0 = std::min(w, 2 * k.step), inner1 = std::max(inner0, w - 2 * k.step);
   for (int dy = -2; dy <= 2; ++dy) {
     const int yq = y + dy * k.step;
@@ -217,27 +216,36 @@ void atrous_row(const AtrousKernel& k, const float* __restrict lum, int y, RowSc
       inv_dist[dx + 2] = inv_tap_distance(dx, dy, k.step);
     }
     const int row_offset = (yq - y) * w;
-    if (dy == 0)
-      atrous_tap_row<Power, true>(depth, nx, ny, nz, lum, cr, cg, cb, var_in, inv_phi_z,
-                                  inv_phi_l, sw, sr, sg, sb, sv, row, row_offset, k.step, inner0,
-                                  inner1, inv_dist, kw, power);
-    else
-      atrous_tap_row<Power, false>(depth, nx, ny, nz, lum, cr, cg, cb, var_in, inv_phi_z,
-                                   inv_phi_l, sw, sr, sg, sb, sv, row, row_offset, k.step, inner0,
-                                   inner1, inv_dist, kw, power);
-    for (int dx = -2; dx <= 2; ++dx) {
-      if (dx == 0 && dy == 0) continue;
-      const int off = dx * k.step;
-      const int x0 = std::max(0, -off), x1 = std::min(w, w - off);
-      const auto tap = [&](int from, int to) {
-        if (from < to)
-          atrous_tap(depth, nx, ny, nz, lum, cr, cg, cb, var_in, inv_phi_z, inv_phi_l, sw, sr,
-                     sg, sb, sv, row, row_offset + off, from, to, inv_dist[dx + 2], kw[dx + 2],
-                     power);
+    // The interior, then the border pixels on the left and on the right, each border's loop
+    // widened to 16 pixels where the row has them and its loads stay in the image.
+    const auto tap_rows = [&](auto centre_row) {
+      constexpr bool kCentre = decltype(centre_row)::value;
+      const auto call = [&](auto columns, int x0, int x1, int active0, int active1) {
+        atrous_tap_row<Power, kCentre, decltype(columns)::value>(
+            depth, nx, ny, nz, lum, cr, cg, cb, var_in, inv_phi_z, inv_phi_l, sw, sr, sg, sb, sv,
+            row, row_offset, k.step, x0, x1, active0, active1, w, inv_dist, kw, power);
       };
-      tap(x0, std::min(x1, inner0));  // left border
-      tap(std::max(x0, inner1), x1);  // right border
-    }
+      using Interior = std::integral_constant<TapColumns, TapColumns::kInterior>;
+      using Border = std::integral_constant<TapColumns, TapColumns::kBorder>;
+      using Clamped = std::integral_constant<TapColumns, TapColumns::kBorderClamped>;
+      if (inner0 < inner1) call(Interior{}, inner0, inner1, inner0, inner1);
+      const auto border = [&](int active0, int active1, int x0, int x1) {
+        if (active0 >= active1) return;
+        const long first = static_cast<long>(row) + row_offset + x0 - 2 * k.step;
+        const long last = static_cast<long>(row) + row_offset + x1 - 1 + 2 * k.step;
+        if (first >= 0 && last < static_cast<long>(w) * h)
+          call(Border{}, x0, x1, active0, active1);
+        else
+          call(Clamped{}, active0, active1, active0, active1);
+      };
+      constexpr int kVector = 16;
+      border(0, inner0, 0, std::min(w, std::max(inner0, kVector)));
+      border(inner1, w, std::max(0, std::min(inner1, w - kVector)), w);
+    };
+    if (dy == 0)
+      tap_rows(std::true_type{});
+    else
+      tap_rows(std::false_type{});
   }
   atrous_normalize(g.depth + row, k.in.color.r + row, k.in.color.g + row, k.in.color.b + row,
                    var_in + row, sw, sr, sg, sb, sv, k.out.color.r + row, k.out.color.g + row,
@@ -372,21 +380,31 @@ void variance_row(const VarianceKernel& k, const float* __restrict lum, int y, R
                         k.out.color.b + row, k.out.variance + row, w, k.params);
   // The 7x7 work runs only over runs of pixels that need it (young history on a surface): after
   // a disocclusion, or at the edge a camera pan uncovers, they are short. Runs closer than
-  // kGap pixels share one span (fewer, longer vector loops).
+  // kGap pixels share one span (fewer, longer vector loops), and a span is widened to whole
+  // vectors of kGap pixels where the row has room: GCC 12 finishes a loop's last partial
+  // vector one pixel at a time (16% of the tap loop's time in scalar code before), while a
+  // widened span's extra pixels take lanes the vectors had anyway. They keep the pass-through's
+  // values (variance_span_finish selects the young pixels).
   constexpr int kGap = 16;
+  const auto span = [&](int from, int to) {
+    const int n = (to - from + kGap - 1) / kGap * kGap;
+    to = std::min(w, from + n);
+    from = std::max(0, to - n);
+    variance_span(k, lum, y, from, to, s, power);
+  };
   int lo = -1, hi = -1;
   for (int x = 0; x <= w; ++x) {
     const bool needs = x < w && k.history[row + x] < young && g.is_surface(row + x);
     if (needs) {
       if (lo >= 0 && x - hi >= kGap) {
-        variance_span(k, lum, y, lo, hi, s, power);
+        span(lo, hi);
         lo = -1;
       }
       if (lo < 0) lo = x;
       hi = x + 1;
     }
   }
-  if (lo >= 0) variance_span(k, lum, y, lo, hi, s, power);
+  if (lo >= 0) span(lo, hi);
 }
 
 // Luminances of n pixels (restrict: vectorized).

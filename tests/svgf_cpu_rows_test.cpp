@@ -188,3 +188,33 @@ TEST_CASE("cpu rows: spatial variance rows equal the per-pixel kernel bitwise", 
     for (int radius : {1, 2}) require_variance_rows_match(f, acc, moments, history, 128.f, radius);
   }
 }
+
+// Few young pixels, as in a renderer's frame: the rows run the estimate over short spans of a
+// row, each widened to whole 16-pixel vectors where the row has room (leftwards at the right
+// end, clipped in a row narrower than that). Runs of 1 to 20 young pixels at the ends and in
+// the middle of rows, isolated ones, and gaps just below and above the 16 pixels that merge two
+// runs into one span; the old pixels in a widened span keep the temporal variance.
+TEST_CASE("cpu rows: spatial variance rows over sparse young pixels equal the kernel",
+          "[cpu_rows]") {
+  const int sizes[][2] = {{257, 41}, {40, 12}, {12, 9}, {16, 5}};
+  uint32_t seed = 300;
+  for (const auto& size : sizes) {
+    const int w = size[0], h = size[1];
+    const Frame f = random_guides(w, h, ++seed);
+    Image acc(w, h, 4), moments(w, h, 2), history(w, h, 1), coin(w, h, 1);
+    test::fill_uniform(acc, 0.f, 3.f, ++seed);
+    test::fill_uniform(moments, 0.f, 2.f, ++seed);
+    test::fill_uniform(coin, 0.f, 1.f, ++seed);
+    for (int y = 0; y < h; ++y) {
+      const int run = 1 + y % 20, gap = 15 + y % 3;  // gaps of 15, 16 and 17 pixels
+      for (int x = 0; x < w; ++x) {
+        const int at = y % 4 == 0 ? x : (y % 4 == 1 ? w - 1 - x : x - w / 3);
+        const bool in_run = at >= 0 && at % (run + gap) < run && at < 2 * (run + gap);
+        const bool young = in_run || coin.plane(0)[y * w + x] < 0.02f;
+        history.plane(0)[y * w + x] = young ? static_cast<float>(1 + (x + y) % 3) : 7.f;
+      }
+    }
+    for (float phi : {128.f, 3.f}) require_variance_rows_match(f, acc, moments, history, phi);
+    require_variance_rows_match(f, acc, moments, history, 128.f, 2);
+  }
+}
