@@ -245,7 +245,7 @@ struct RowInts {
   std::vector<ChunkWindow> windows;  // kWindowKinds lists, each room for every chunk
   explicit RowInts(int width)
       : dx(static_cast<size_t>(width)), dy(dx.size()), moved(dx.size()), fallback(dx.size()),
-        pending(dx.size() + kChunk), lambda(dx.size()),
+        pending(dx.size()), lambda(dx.size()),
         windows(kWindowKinds * (dx.size() / kChunk + 1)) {}
 };
 
@@ -341,12 +341,7 @@ void reproject_row(const ReprojectKernel& kernel, const ReprojectKernel& compact
   for (int x = 0; x < w; ++x)
     if (fallback[x]) pending[n++] = x;
   if (n == 0) return;
-  // The list padded with its last pixel to whole chunks: GCC 12 finishes a loop's last partial
-  // vector one pixel at a time, and a row has few such pixels (a fifth of the pass's time was
-  // scalar code). The copies' outputs, at n and beyond, are not read.
-  const int padded = (n + kChunk - 1) / kChunk * kChunk;
-  for (int m = n; m < padded; ++m) pending[m] = pending[n - 1];
-  reproject_fallback(compact, y, pending, padded, ints.lambda.data());
+  reproject_fallback(compact, y, pending, n, ints.lambda.data());
   for (int m = 0; m < n; ++m) {
     const int i = kernel.guides.index(pending[m], y);
     kernel.accumulated.color.store(i, compact.accumulated.color.load(m));
@@ -368,7 +363,7 @@ void run_reproject_rows(const ReprojectKernel& kernel, int width, int height) {
   }
   parallel_rows(height, [&](int y0, int y1) {
     RowInts ints(width);
-    RowScratch out(7, width + kChunk);  // room for reproject_row's padded list
+    RowScratch out(7, width);
     ReprojectKernel compact = kernel;
     compact.accumulated = {RgbView(out[0], out[1], out[2]), out[3]};
     compact.moment1 = out[4];

@@ -16,7 +16,7 @@ enum class TapColumns {
               // per-pixel kernel skips it (loaded anyway, from the neighbouring row, and its
               // terms not added: a select, not a branch, so the loop stays vector code)
   kBorderClamped,  // the same where such a load would leave the image: loaded clamped into
-                   // the row (a gather; GCC 12 leaves this one scalar)
+                   // the row (gathers; the rows that reach the image's first or last pixel)
 };
 
 // The five taps dx = -2..2 of one a-trous tap row for pixels x0..x1 of a row w wide, in the
@@ -382,9 +382,9 @@ void variance_row(const VarianceKernel& k, const float* __restrict lum, int y, R
   // a disocclusion, or at the edge a camera pan uncovers, they are short. Runs closer than
   // kGap pixels share one span (fewer, longer vector loops), and a span is widened to whole
   // vectors of kGap pixels where the row has room: GCC 12 finishes a loop's last partial
-  // vector one pixel at a time (16% of the tap loop's time in scalar code before), while a
-  // widened span's extra pixels take lanes the vectors had anyway. They keep the pass-through's
-  // values (variance_span_finish selects the young pixels).
+  // vector one pixel at a time (16% of the tap loop's time in scalar code before; 8% after,
+  // the stage about as fast on camera-pan: docs/benchmarks.md). The extra pixels keep the
+  // pass-through's values (variance_span_finish selects the young pixels).
   constexpr int kGap = 16;
   const auto span = [&](int from, int to) {
     const int n = (to - from + kGap - 1) / kGap * kGap;
