@@ -80,6 +80,11 @@ void with_normal_power(float phi_normal, const Body& body) {
   }
 }
 
+// A float vector's lanes on the widest instruction set the rows are built for (x86-64-v4):
+// GCC 12 has no masked loop tails on x86, so a loop of fewer pixels, or its last partial
+// vector, runs one pixel at a time; short loops are widened to whole vectors of these.
+inline constexpr int kVectorLanes = 16;
+
 // rows(y0, y1) over the image's rows with TBB, in the IEEE mode the kernels need.
 template <class Rows>
 void parallel_rows(int height, const Rows& rows) {

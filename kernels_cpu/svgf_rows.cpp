@@ -238,9 +238,8 @@ void atrous_row(const AtrousKernel& k, const float* __restrict lum, int y, RowSc
         else
           call(Clamped{}, active0, active1, active0, active1);
       };
-      constexpr int kVector = 16;
-      border(0, inner0, 0, std::min(w, std::max(inner0, kVector)));
-      border(inner1, w, std::max(0, std::min(inner1, w - kVector)), w);
+      border(0, inner0, 0, std::min(w, std::max(inner0, kVectorLanes)));
+      border(inner1, w, std::max(0, std::min(inner1, w - kVectorLanes)), w);
     };
     if (dy == 0)
       tap_rows(std::true_type{});
@@ -381,13 +380,12 @@ void variance_row(const VarianceKernel& k, const float* __restrict lum, int y, R
   // The 7x7 work runs only over runs of pixels that need it (young history on a surface): after
   // a disocclusion, or at the edge a camera pan uncovers, they are short. Runs closer than
   // kGap pixels share one span (fewer, longer vector loops), and a span is widened to whole
-  // vectors of kGap pixels where the row has room: GCC 12 finishes a loop's last partial
-  // vector one pixel at a time (16% of the tap loop's time in scalar code before; 8% after,
-  // the stage about as fast on camera-pan: docs/benchmarks.md). The extra pixels keep the
-  // pass-through's values (variance_span_finish selects the young pixels).
+  // vectors (kVectorLanes) where the row has room: 16% of the tap loop's time was its scalar
+  // tail before, 8% after, the stage about as fast on camera-pan (docs/benchmarks.md). The
+  // extra pixels keep the pass-through's values (variance_span_finish selects the young ones).
   constexpr int kGap = 16;
   const auto span = [&](int from, int to) {
-    const int n = (to - from + kGap - 1) / kGap * kGap;
+    const int n = (to - from + kVectorLanes - 1) / kVectorLanes * kVectorLanes;
     to = std::min(w, from + n);
     from = std::max(0, to - n);
     variance_span(k, lum, y, from, to, s, power);
