@@ -9,9 +9,9 @@
 namespace svgf::cpu {
 namespace {
 
-// Which pixels of a row an a-trous tap row runs over (atrous_tap_row).
+// Which pixels of a row a tap row runs over (atrous_tap_row, variance_taps).
 enum class TapColumns {
-  kInterior,  // pixels whose five taps all lie inside the image: no tests
+  kInterior,  // pixels whose taps in x all lie inside the image: no tests
   kBorder,    // pixels at either end of the row: a tap column outside is skipped, as the
               // per-pixel kernel skips it (loaded anyway, from the neighbouring row, and its
               // terms not added: a select, not a branch, so the loop stays vector code)
@@ -76,11 +76,16 @@ SVGF_TAP_LOOP void atrous_tap_row(const float* __restrict depth, const float* __
 }
 
 // N neighbouring taps of one tap row of the 7x7 spatial variance estimate, dx = first_dx ..
-// first_dx + N - 1 (inv_dist[t] each), for pixels x0..x1 whose N taps all lie inside the image;
-// the body is the per-pixel kernel's. The centre and the sums stay in registers across the N
-// taps (as jbf_tap_group): N = 7 is a whole tap row at the default radius, N = 1 one tap (the
-// border pixels, other radii).
-template <int N, class Power>
+// first_dx + N - 1 (inv_dist[t] each), for pixels x0..x1 of a row w wide; the body is the
+// per-pixel kernel's. The centre and the sums stay in registers across the N taps (as
+// jbf_tap_group): N = 7 is a whole tap row at the default radius, N = 1 one tap (other radii).
+// kInterior: every pixel's N taps lie inside the image. The border kinds skip a tap column
+// outside, as the per-pixel kernel does (atrous_tap_row's kinds): the pixels within 3 of the
+// image's left or right edge, in a loop of a vector's worth of pixels. A camera pan uncovers
+// its young pixels at an edge, so most spans reach one: their 3 edge pixels ran as 21 single-tap
+// loops a tap row and the rest of the vector as the tap row's scalar tail, 25% of the stage
+// (docs/benchmarks.md).
+template <int N, class Power, TapColumns kColumns = TapColumns::kInterior>
 SVGF_TAP_LOOP void variance_taps(const float* __restrict depth, const float* __restrict nx,
                                  const float* __restrict ny, const float* __restrict nz,
                                  const float* __restrict lum, const float* __restrict cr,
@@ -90,8 +95,10 @@ SVGF_TAP_LOOP void variance_taps(const float* __restrict depth, const float* __r
                                  float* __restrict sw, float* __restrict sr,
                                  float* __restrict sg, float* __restrict sb,
                                  float* __restrict sm1, float* __restrict sm2, int row,
-                                 int row_offset, int first_dx, int x0, int x1,
+                                 int row_offset, int first_dx, int x0, int x1, int w,
                                  const float* inv_dist, const Power& power) {
+  constexpr bool kTests = kColumns != TapColumns::kInterior;
+  constexpr bool kClamp = kColumns == TapColumns::kBorderClamped;
   float d[N];
   for (int t = 0; t < N; ++t) d[t] = inv_dist[t];
   for (int x = x0; x < x1; ++x) {
@@ -102,15 +109,22 @@ SVGF_TAP_LOOP void variance_taps(const float* __restrict depth, const float* __r
           m2_sum = sm2[x];
 #pragma GCC unroll 7
     for (int t = 0; t < N; ++t) {
-      const int j = i + row_offset + first_dx + t;
+      const int xq = x + first_dx + t;
+      const bool take = !kTests || ((xq >= 0) & (xq < w));
+      const int j = kClamp ? row + row_offset + (xq < 0 ? 0 : (xq >= w ? w - 1 : xq))
+                           : i + row_offset + first_dx + t;
       const EdgeSample q{depth[j], make_vec3(nx[j], ny[j], nz[j]), lum[j]};
       const float wt = edge_stopping_weight<RowExactArith>(c, q, ipz * d[t], power, inv_phi_l);
-      w_sum = w_sum + wt;
-      r_sum = r_sum + cr[j] * wt;
-      g_sum = g_sum + cg[j] * wt;
-      b_sum = b_sum + cb[j] * wt;
-      m1_sum = m1_sum + m1_in[j] * wt;
-      m2_sum = m2_sum + m2_in[j] * wt;
+      // Every load unconditional, the terms added by a select (as atrous_tap_row).
+      const float w_with = w_sum + wt, r_with = r_sum + cr[j] * wt, g_with = g_sum + cg[j] * wt,
+                  b_with = b_sum + cb[j] * wt, m1_with = m1_sum + m1_in[j] * wt,
+                  m2_with = m2_sum + m2_in[j] * wt;
+      w_sum = take ? w_with : w_sum;
+      r_sum = take ? r_with : r_sum;
+      g_sum = take ? g_with : g_sum;
+      b_sum = take ? b_with : b_sum;
+      m1_sum = take ? m1_with : m1_sum;
+      m2_sum = take ? m2_with : m2_sum;
     }
     sw[x] = w_sum;
     sr[x] = r_sum;
@@ -329,36 +343,62 @@ void variance_span(const VarianceKernel& k, const float* __restrict lum, int y, 
                       sr + lo, sg + lo, sb + lo, sm1 + lo, sm2 + lo, hi - lo, p);
   const float inv_phi_l = 1.f / p.phi_color;
   const int r = p.spatial_variance_radius;
-  // At the default radius, the pixels whose seven taps in x all lie inside take a tap row's
-  // seven at once; the others (and every pixel at another radius) one tap at a time. Each
-  // pixel still adds dx = -r..r in order.
-  constexpr int kRowRadius = 3;
-  const bool rows = r == kRowRadius;
-  const int inner0 = rows ? std::min(hi, std::max(lo, kRowRadius)) : hi;
-  const int inner1 = rows ? std::max(inner0, std::min(hi, w - kRowRadius)) : hi;
   const ConstRgbView c = k.accumulated.color;
-  for (int dy = -r; dy <= r; ++dy) {
-    const int yq = y + dy;
-    if (yq < 0 || yq >= h) continue;
-    float inv_dist[2 * kRowRadius + 1];
-    if (rows) {
-      for (int dx = -r; dx <= r; ++dx) inv_dist[dx + r] = inv_tap_distance(dx, dy, 1);
-      variance_taps<2 * kRowRadius + 1>(g.depth, g.normal.r, g.normal.g, g.normal.b, lum, c.r,
-                                        c.g, c.b, k.moment1, k.moment2, inv_phi_z, inv_phi_l,
-                                        sw, sr, sg, sb, sm1, sm2, row, dy * w, -kRowRadius,
-                                        inner0, inner1, inv_dist, power);
-    }
-    for (int dx = -r; dx <= r; ++dx) {
-      const int x0 = std::max(lo, -dx), x1 = std::min(hi, w - dx);
-      const float dist = inv_tap_distance(dx, dy, 1);
-      const auto tap = [&](int from, int to) {
-        if (from < to)
+  constexpr int kRowRadius = 3;
+  if (r != kRowRadius) {
+    // Another radius: one tap at a time, over the pixels that have it inside the image; each
+    // pixel still adds dx = -r..r in order.
+    for (int dy = -r; dy <= r; ++dy) {
+      const int yq = y + dy;
+      if (yq < 0 || yq >= h) continue;
+      for (int dx = -r; dx <= r; ++dx) {
+        const int x0 = std::max(lo, -dx), x1 = std::min(hi, w - dx);
+        const float dist = inv_tap_distance(dx, dy, 1);
+        if (x0 < x1)
           variance_taps<1>(g.depth, g.normal.r, g.normal.g, g.normal.b, lum, c.r, c.g, c.b,
                            k.moment1, k.moment2, inv_phi_z, inv_phi_l, sw, sr, sg, sb, sm1, sm2,
-                           row, dy * w, dx, from, to, &dist, power);
+                           row, dy * w, dx, x0, x1, w, &dist, power);
+      }
+    }
+  } else {
+    // The default radius: a tap row's seven taps at once. The pixels whose seven taps in x lie
+    // inside run without tests; the span's pixels within 3 of the image's left or right edge
+    // run with them, in a vector's worth of pixels (the span is whole vectors where the row has
+    // room), so that neither part has a scalar tail.
+    const int inner0 = std::min(hi, std::max(lo, kRowRadius));
+    const int inner1 = std::max(inner0, std::min(hi, w - kRowRadius));
+    const int left_end = inner0 > lo ? std::min(hi, std::max(inner0, lo + kVectorLanes)) : lo;
+    const int right_begin =
+        inner1 < hi ? std::max(left_end, std::min(inner1, hi - kVectorLanes)) : hi;
+    for (int dy = -r; dy <= r; ++dy) {
+      const int yq = y + dy;
+      if (yq < 0 || yq >= h) continue;
+      float inv_dist[2 * kRowRadius + 1];
+      for (int dx = -r; dx <= r; ++dx) inv_dist[dx + r] = inv_tap_distance(dx, dy, 1);
+      const auto call = [&](auto columns, int x0, int x1) {
+        if (x0 < x1)
+          variance_taps<2 * kRowRadius + 1, Power, decltype(columns)::value>(
+              g.depth, g.normal.r, g.normal.g, g.normal.b, lum, c.r, c.g, c.b, k.moment1,
+              k.moment2, inv_phi_z, inv_phi_l, sw, sr, sg, sb, sm1, sm2, row, dy * w,
+              -kRowRadius, x0, x1, w, inv_dist, power);
       };
-      tap(x0, std::min(x1, inner0));  // left of the tap rows' pixels (all of them without)
-      tap(std::max(x0, inner1), x1);  // right of them
+      using Interior = std::integral_constant<TapColumns, TapColumns::kInterior>;
+      using Border = std::integral_constant<TapColumns, TapColumns::kBorder>;
+      using Clamped = std::integral_constant<TapColumns, TapColumns::kBorderClamped>;
+      call(Interior{}, left_end, right_begin);
+      // A border's skipped taps are loaded from the neighbouring row, or clamped into the row
+      // where that would leave the plane (the first row's left edge, the last row's right).
+      const auto border = [&](int x0, int x1) {
+        if (x0 >= x1) return;
+        const long first = static_cast<long>(yq) * w + x0 - kRowRadius;
+        const long last = static_cast<long>(yq) * w + x1 - 1 + kRowRadius;
+        if (first >= 0 && last < static_cast<long>(w) * h)
+          call(Border{}, x0, x1);
+        else
+          call(Clamped{}, x0, x1);
+      };
+      border(lo, left_end);
+      border(right_begin, hi);
     }
   }
   const int at = row + lo;
