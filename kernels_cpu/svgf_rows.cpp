@@ -9,7 +9,7 @@
 namespace svgf::cpu {
 namespace {
 
-// Which pixels of a row a tap row runs over (atrous_tap_row, variance_taps).
+// Which pixels of a row a tap row runs over (atrous_tap_row; variance_taps the first two).
 enum class TapColumns {
   kInterior,  // pixels whose taps in x all lie inside the image: no tests
   kBorder,    // pixels at either end of the row: a tap column outside is skipped, as the
@@ -79,12 +79,12 @@ SVGF_TAP_LOOP void atrous_tap_row(const float* __restrict depth, const float* __
 // first_dx + N - 1 (inv_dist[t] each), for pixels x0..x1 of a row w wide; the body is the
 // per-pixel kernel's. The centre and the sums stay in registers across the N taps (as
 // jbf_tap_group): N = 7 is a whole tap row at the default radius, N = 1 one tap (other radii).
-// kInterior: every pixel's N taps lie inside the image. The border kinds skip a tap column
-// outside, as the per-pixel kernel does (atrous_tap_row's kinds): the pixels within 3 of the
-// image's left or right edge, in a loop of a vector's worth of pixels. A camera pan uncovers
-// its young pixels at an edge, so most spans reach one: their 3 edge pixels ran as 21 single-tap
-// loops a tap row and the rest of the vector as the tap row's scalar tail, 25% of the stage
-// (docs/benchmarks.md).
+// kInterior: every pixel's N taps lie inside the image. kBorder skips a tap column outside, as
+// the per-pixel kernel does (atrous_tap_row's kind): the pixels within 3 of the image's left or
+// right edge, in a loop of a vector's worth of pixels, every load inside the plane (the caller
+// checks). A camera pan uncovers its young pixels at an edge, so most spans reach one: their 3
+// edge pixels ran as 21 single-tap loops a tap row and the rest of the vector as the tap row's
+// scalar tail, 25% of the stage (docs/benchmarks.md).
 template <int N, class Power, TapColumns kColumns = TapColumns::kInterior>
 SVGF_TAP_LOOP void variance_taps(const float* __restrict depth, const float* __restrict nx,
                                  const float* __restrict ny, const float* __restrict nz,
@@ -97,8 +97,8 @@ SVGF_TAP_LOOP void variance_taps(const float* __restrict depth, const float* __r
                                  float* __restrict sm1, float* __restrict sm2, int row,
                                  int row_offset, int first_dx, int x0, int x1, int w,
                                  const float* inv_dist, const Power& power) {
-  constexpr bool kTests = kColumns != TapColumns::kInterior;
-  constexpr bool kClamp = kColumns == TapColumns::kBorderClamped;
+  static_assert(kColumns != TapColumns::kBorderClamped, "variance_span runs no clamped kind");
+  constexpr bool kTests = kColumns == TapColumns::kBorder;
   float d[N];
   for (int t = 0; t < N; ++t) d[t] = inv_dist[t];
   for (int x = x0; x < x1; ++x) {
@@ -111,8 +111,7 @@ SVGF_TAP_LOOP void variance_taps(const float* __restrict depth, const float* __r
     for (int t = 0; t < N; ++t) {
       const int xq = x + first_dx + t;
       const bool take = !kTests || ((xq >= 0) & (xq < w));
-      const int j = kClamp ? row + row_offset + (xq < 0 ? 0 : (xq >= w ? w - 1 : xq))
-                           : i + row_offset + first_dx + t;
+      const int j = i + row_offset + first_dx + t;
       const EdgeSample q{depth[j], make_vec3(nx[j], ny[j], nz[j]), lum[j]};
       const float wt = edge_stopping_weight<RowExactArith>(c, q, ipz * d[t], power, inv_phi_l);
       // Every load unconditional, the terms added by a select (as atrous_tap_row).
@@ -384,18 +383,26 @@ void variance_span(const VarianceKernel& k, const float* __restrict lum, int y, 
       };
       using Interior = std::integral_constant<TapColumns, TapColumns::kInterior>;
       using Border = std::integral_constant<TapColumns, TapColumns::kBorder>;
-      using Clamped = std::integral_constant<TapColumns, TapColumns::kBorderClamped>;
       call(Interior{}, left_end, right_begin);
-      // A border's skipped taps are loaded from the neighbouring row, or clamped into the row
-      // where that would leave the plane (the first row's left edge, the last row's right).
+      // A border's skipped taps are loaded from the neighbouring row. Where that would leave
+      // the plane (the first row's left edge, the last row's right) the pixels take the seven
+      // taps one at a time over the pixels that have each inside instead (a clamped kind of
+      // the tap row, emulated gathers, cost GCC a minute of compile time a variant).
       const auto border = [&](int x0, int x1) {
         if (x0 >= x1) return;
         const long first = static_cast<long>(yq) * w + x0 - kRowRadius;
         const long last = static_cast<long>(yq) * w + x1 - 1 + kRowRadius;
-        if (first >= 0 && last < static_cast<long>(w) * h)
+        if (first >= 0 && last < static_cast<long>(w) * h) {
           call(Border{}, x0, x1);
-        else
-          call(Clamped{}, x0, x1);
+          return;
+        }
+        for (int dx = -r; dx <= r; ++dx) {
+          const int from = std::max(x0, -dx), to = std::min(x1, w - dx);
+          if (from < to)
+            variance_taps<1>(g.depth, g.normal.r, g.normal.g, g.normal.b, lum, c.r, c.g, c.b,
+                             k.moment1, k.moment2, inv_phi_z, inv_phi_l, sw, sr, sg, sb, sm1,
+                             sm2, row, dy * w, dx, from, to, w, &inv_dist[dx + r], power);
+        }
       };
       border(lo, left_end);
       border(right_begin, hi);
