@@ -387,7 +387,8 @@ void variance_span(const VarianceKernel& k, const float* __restrict lum, int y, 
       // A border's skipped taps are loaded from the neighbouring row. Where that would leave
       // the plane (the first row's left edge, the last row's right) the pixels take the seven
       // taps one at a time over the pixels that have each inside instead (a clamped kind of
-      // the tap row, emulated gathers, cost GCC a minute of compile time a variant).
+      // the tap row, with emulated gathers for 12 powers, cost 66 s of compile time in the v4
+      // variant alone: docs/sanitizers.md).
       const auto border = [&](int x0, int x1) {
         if (x0 >= x1) return;
         const long first = static_cast<long>(yq) * w + x0 - kRowRadius;
