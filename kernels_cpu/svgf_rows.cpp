@@ -16,8 +16,25 @@ enum class TapColumns {
               // per-pixel kernel skips it (loaded anyway, from the neighbouring row, and its
               // terms not added: a select, not a branch, so the loop stays vector code)
   kBorderClamped,  // the same where such a load would leave the image: loaded clamped into
-                   // the row (gathers; the rows that reach the image's first or last pixel)
+                   // the row (scalar code: keep_scalar; the rows that reach the image's first
+                   // or last pixel)
 };
+
+// Whether a border tap row's loads for pixels x0..x1 of the tap row starting at index
+// row_start, reaching `reach` pixels to either side, all lie in a plane of `size` values:
+// kBorder where they do, kBorderClamped where they do not.
+inline bool border_loads_in_plane(long row_start, int x0, int x1, int reach, long size) {
+  return row_start + x0 - reach >= 0 && row_start + x1 - 1 + reach < size;
+}
+
+// Column xq clamped into a row w wide (kBorderClamped's loads).
+inline int clamped_column(int xq, int w) { return xq < 0 ? 0 : (xq >= w ? w - 1 : xq); }
+
+// Called at the top of the kBorderClamped loops: an empty asm keeps GCC from vectorizing the
+// loop (it changes no value). The kind runs a few pixels of a few rows an iteration, and
+// vectorized, its clamped loads as emulated gathers for 12 normal-weight powers, it took GCC
+// 48 s of the v4 variant's 98 for the a-trous alone (docs/sanitizers.md).
+inline void keep_scalar() { asm volatile("" ::: "memory"); }
 
 // The five taps dx = -2..2 of one a-trous tap row for pixels x0..x1 of a row w wide, in the
 // per-pixel kernel's order, with the centre and the running sums held in registers across the
@@ -44,11 +61,7 @@ SVGF_TAP_LOOP void atrous_tap_row(const float* __restrict depth, const float* __
   const float d[5] = {inv_dist[0], inv_dist[1], inv_dist[2], inv_dist[3], inv_dist[4]};
   const float k[5] = {kw[0], kw[1], kw[2], kw[3], kw[4]};
   for (int x = x0; x < x1; ++x) {
-    // The clamped kind stays scalar code: it runs a few pixels of a few rows an iteration, and
-    // vectorized (its clamped loads as emulated gathers, for 12 powers and 2 centre kinds) it
-    // took GCC 48 s of the v4 variant's 98 (docs/sanitizers.md). An empty asm keeps GCC from
-    // vectorizing the loop; it changes no value.
-    if constexpr (kClamp) asm volatile("" ::: "memory");
+    if constexpr (kClamp) keep_scalar();
     const int i = row + x;
     const EdgeSample c{depth[i], make_vec3(nx[i], ny[i], nz[i]), lum[i]};
     const float ipz = inv_phi_z[x], ipl = inv_phi_l[x];
@@ -59,7 +72,7 @@ SVGF_TAP_LOOP void atrous_tap_row(const float* __restrict depth, const float* __
       if (kCentreRow && t == 2) continue;  // the centre tap is already in the sums
       const int xq = x + (t - 2) * step;
       const bool take = !kTests || (active & (xq >= 0) & (xq < w));
-      const int j = kClamp ? row + row_offset + (xq < 0 ? 0 : (xq >= w ? w - 1 : xq))
+      const int j = kClamp ? row + row_offset + clamped_column(xq, w)
                            : i + row_offset + (t - 2) * step;
       const EdgeSample q{depth[j], make_vec3(nx[j], ny[j], nz[j]), lum[j]};
       const float wt = edge_stopping_weight<RowExactArith>(c, q, ipz * d[t], power, ipl) * k[t];
@@ -84,10 +97,9 @@ SVGF_TAP_LOOP void atrous_tap_row(const float* __restrict depth, const float* __
 // first_dx + N - 1 (inv_dist[t] each), for pixels x0..x1 of a row w wide; the body is the
 // per-pixel kernel's. The centre and the sums stay in registers across the N taps (as
 // jbf_tap_group): N = 7 is a whole tap row at the default radius, N = 1 one tap (other radii).
-// kInterior: every pixel's N taps lie inside the image. kBorder skips a tap column outside, as
-// the per-pixel kernel does (atrous_tap_row's kind): the pixels within 3 of the image's left or
-// right edge, in a loop of a vector's worth of pixels, every load inside the plane (the caller
-// checks). A camera pan uncovers its young pixels at an edge, so most spans reach one: their 3
+// kInterior: every pixel's N taps lie inside the image. The border kinds skip a tap column
+// outside, as the per-pixel kernel does (atrous_tap_row's kinds): the pixels within 3 of the
+// image's left or right edge, in a loop of a vector's worth of pixels. A camera pan uncovers its young pixels at an edge, so most spans reach one: their 3
 // edge pixels ran as 21 single-tap loops a tap row and the rest of the vector as the tap row's
 // scalar tail, 25% of the stage (docs/benchmarks.md).
 template <int N, class Power, TapColumns kColumns = TapColumns::kInterior>
@@ -102,11 +114,12 @@ SVGF_TAP_LOOP void variance_taps(const float* __restrict depth, const float* __r
                                  float* __restrict sm1, float* __restrict sm2, int row,
                                  int row_offset, int first_dx, int x0, int x1, int w,
                                  const float* inv_dist, const Power& power) {
-  static_assert(kColumns != TapColumns::kBorderClamped, "variance_span runs no clamped kind");
-  constexpr bool kTests = kColumns == TapColumns::kBorder;
+  constexpr bool kTests = kColumns != TapColumns::kInterior;
+  constexpr bool kClamp = kColumns == TapColumns::kBorderClamped;
   float d[N];
   for (int t = 0; t < N; ++t) d[t] = inv_dist[t];
   for (int x = x0; x < x1; ++x) {
+    if constexpr (kClamp) keep_scalar();
     const int i = row + x;
     const EdgeSample c{depth[i], make_vec3(nx[i], ny[i], nz[i]), lum[i]};
     const float ipz = inv_phi_z[x];
@@ -116,7 +129,8 @@ SVGF_TAP_LOOP void variance_taps(const float* __restrict depth, const float* __r
     for (int t = 0; t < N; ++t) {
       const int xq = x + first_dx + t;
       const bool take = !kTests || ((xq >= 0) & (xq < w));
-      const int j = i + row_offset + first_dx + t;
+      const int j = kClamp ? row + row_offset + clamped_column(xq, w)
+                           : i + row_offset + first_dx + t;
       const EdgeSample q{depth[j], make_vec3(nx[j], ny[j], nz[j]), lum[j]};
       const float wt = edge_stopping_weight<RowExactArith>(c, q, ipz * d[t], power, inv_phi_l);
       // Every load unconditional, the terms added by a select (as atrous_tap_row).
@@ -249,9 +263,8 @@ void atrous_row(const AtrousKernel& k, const float* __restrict lum, int y, RowSc
       if (inner0 < inner1) call(Interior{}, inner0, inner1, inner0, inner1);
       const auto border = [&](int active0, int active1, int x0, int x1) {
         if (active0 >= active1) return;
-        const long first = static_cast<long>(row) + row_offset + x0 - 2 * k.step;
-        const long last = static_cast<long>(row) + row_offset + x1 - 1 + 2 * k.step;
-        if (first >= 0 && last < static_cast<long>(w) * h)
+        if (border_loads_in_plane(static_cast<long>(row) + row_offset, x0, x1, 2 * k.step,
+                                  static_cast<long>(w) * h))
           call(Border{}, x0, x1, active0, active1);
         else
           call(Clamped{}, active0, active1, active0, active1);
@@ -388,27 +401,17 @@ void variance_span(const VarianceKernel& k, const float* __restrict lum, int y, 
       };
       using Interior = std::integral_constant<TapColumns, TapColumns::kInterior>;
       using Border = std::integral_constant<TapColumns, TapColumns::kBorder>;
+      using Clamped = std::integral_constant<TapColumns, TapColumns::kBorderClamped>;
       call(Interior{}, left_end, right_begin);
-      // A border's skipped taps are loaded from the neighbouring row. Where that would leave
-      // the plane (the first row's left edge, the last row's right) the pixels take the seven
-      // taps one at a time over the pixels that have each inside instead (a clamped kind of
-      // the tap row, with emulated gathers for 12 powers, cost 66 s of compile time in the v4
-      // variant alone: docs/sanitizers.md).
+      // A border's skipped taps are loaded from the neighbouring row, or clamped into the row
+      // where that would leave the plane (the first row's left edge, the last row's right).
       const auto border = [&](int x0, int x1) {
         if (x0 >= x1) return;
-        const long first = static_cast<long>(yq) * w + x0 - kRowRadius;
-        const long last = static_cast<long>(yq) * w + x1 - 1 + kRowRadius;
-        if (first >= 0 && last < static_cast<long>(w) * h) {
+        if (border_loads_in_plane(static_cast<long>(yq) * w, x0, x1, kRowRadius,
+                                  static_cast<long>(w) * h))
           call(Border{}, x0, x1);
-          return;
-        }
-        for (int dx = -r; dx <= r; ++dx) {
-          const int from = std::max(x0, -dx), to = std::min(x1, w - dx);
-          if (from < to)
-            variance_taps<1>(g.depth, g.normal.r, g.normal.g, g.normal.b, lum, c.r, c.g, c.b,
-                             k.moment1, k.moment2, inv_phi_z, inv_phi_l, sw, sr, sg, sb, sm1,
-                             sm2, row, dy * w, dx, from, to, w, &inv_dist[dx + r], power);
-        }
+        else
+          call(Clamped{}, x0, x1);
       };
       border(lo, left_end);
       border(right_begin, hi);
