@@ -36,6 +36,12 @@ struct EngineConfig {
   // The CPU kernels' instruction-set variant (kernels_cpu/cpu_variant.h): "auto" (the widest
   // this CPU runs), "v2", "v3", "v4"; empty: the environment variable SVGF_CPU_ISA, else auto.
   std::string cpu_isa;
+  // Keep a method's frame scratch in buffers of its own, so that read_buffer() can return it
+  // after the frame (SVGF: the illumination and the accumulation). Off, a method may place
+  // that scratch in memory a later stage of the same frame overwrites (SVGF: its a-trous
+  // buffers, 4 planes of the frame's size less) and debug_buffers() leaves it out. The output
+  // and every other buffer are the same bits either way.
+  bool keep_scratch = false;
 };
 
 // Pixels of one frame whose inputs the sanitize stage repaired, per kind (core/sanitize.h has

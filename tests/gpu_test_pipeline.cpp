@@ -160,15 +160,21 @@ TEST_CASE("pipeline: CPU vs CUDA exact bitwise over whole sequences; fast within
                               {"defaults + taa", taa, true},
                               {"gradient, 3 steps, lambda radius 2", wide_gradient, true},
                               {"split", split, false}};
+  // The CPU keeps its scratch (EngineConfig::keep_scratch) and is compared buffer by buffer
+  // with the CUDA denoisers; these keep theirs on every other sequence and share it with the
+  // a-trous buffers on the rest (the default), where they have fewer buffers to compare.
+  int sequence = 0;
   for (const auto& [setting, params, needs_gradients] : settings)
   for (const Source& src : sources()) {
     if (needs_gradients && src.frames > 1 && src.frame(1).gradient.empty())
       continue;
+    const bool cuda_keeps_scratch = sequence++ % 2 == 1;
     tally().sequences.push_back(src.name + " (" + std::to_string(src.frames) + " frames, " +
-                                setting + ")");
+                                setting + (cuda_keeps_scratch ? "" : ", scratch shared") + ")");
     const auto make = [&, params = params](Backend b, Mode m) {
       DenoiserConfig c = config(b, m);
       c.svgf = params;
+      c.keep_scratch = b == Backend::Cpu || cuda_keeps_scratch;
       return make_denoiser(c);
     };
     auto cpu = make(Backend::Cpu, Mode::Exact);
@@ -199,7 +205,7 @@ TEST_CASE("pipeline: CPU vs CUDA exact bitwise over whole sequences; fast within
         REQUIRE(a.surface == b.surface);
         REQUIRE(a.motion == b.motion);
       }
-      for (const std::string& name : cpu->debug_buffers()) {
+      for (const std::string& name : exact->debug_buffers()) {
         const Image a = cpu->read_buffer(name);
         test::require_identical(a, exact->read_buffer(name), where + ": " + name);
         count_values(a);
@@ -211,9 +217,10 @@ TEST_CASE("pipeline: CPU vs CUDA exact bitwise over whole sequences; fast within
       test::require_identical(fast->read_buffer(svgf_buffer::kHistoryLength),
                               exact->read_buffer(svgf_buffer::kHistoryLength),
                               where + ": fast history length");
-      test::require_identical(fast->read_buffer(svgf_buffer::kIllumination),
-                              exact->read_buffer(svgf_buffer::kIllumination),
-                              where + ": fast illumination");
+      if (cuda_keeps_scratch)
+        test::require_identical(fast->read_buffer(svgf_buffer::kIllumination),
+                                exact->read_buffer(svgf_buffer::kIllumination),
+                                where + ": fast illumination");
       for (float v : out_fast.data()) REQUIRE(std::isfinite(v));
       const double rel = metrics::relmse(out_fast, out_exact);
       double delta = 0;

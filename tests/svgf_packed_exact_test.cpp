@@ -74,9 +74,11 @@ void require_same_bits_over(const SvgfParams& p, const std::vector<Frame>& frame
   DenoiserConfig c;
   c.svgf = p;
   c.threads = 2;
+  c.keep_scratch = true;  // the scratch compared too
   const std::unique_ptr<Denoiser> planes = make_denoiser(c);
   EngineConfig e;
   e.threads = 2;
+  e.keep_scratch = true;
   SvgfDenoiser<Backend> packed(p, e);
   for (size_t k = 0; k < frames.size(); ++k) {
     if (k < cut.size() && cut[k]) {

@@ -71,6 +71,7 @@ TEST_CASE("params: the pipeline's default albedo epsilon is 1e-3", "[params][pip
   DenoiserConfig c;
   c.backend = Backend::Cpu;
   c.threads = 1;
+  c.keep_scratch = true;
   auto d = make_denoiser(c);
   Image out;
   d->denoise(f, out);

@@ -87,6 +87,7 @@ void feedback_tap_is_next_history(const TestDevice& device) {
   DenoiserConfig config = config_for(device);
   config.svgf.iterations = 3;
   config.svgf.feedback_tap = 0;
+  config.keep_scratch = true;  // frame 1's accumulation and illumination are read back
   auto d = make_denoiser(config);
   const Frame f0 = scene.frame(0);
   Image out;
@@ -141,6 +142,7 @@ void accumulation_is_the_history_without_a_tap(const TestDevice& device) {
     config.svgf.iterations = 3;
     config.svgf.feedback_tap = tap;
     config.svgf.indirect_iterations = indirect_iterations;
+    config.keep_scratch = true;
     auto d = make_denoiser(config);
     Image out;
     for (int k = 0; k < 3; ++k) d->denoise(scene.frame(k), out);
@@ -338,6 +340,82 @@ void taa_follows_remodulation(const TestDevice& device) {
   }
 }
 
+// Without EngineConfig::keep_scratch (the default) the illumination and the accumulation live
+// in the a-trous buffers' memory (methods/svgf/denoiser.h): the output and every buffer a
+// caller can still read are the same bits as with the scratch kept, on every branch the frame
+// takes (A-SVGF's gradient samples, a fed-back iteration's 4-plane accumulation, direct and
+// indirect, TAA, no a-trous iteration, the statistics anti-lag, a reset). The scratch is then
+// not a debug buffer, and reading it names the option.
+void shared_scratch_changes_no_bits(const TestDevice& device) {
+  test::SyntheticScene scene;
+  // Frames with A-SVGF's samples from frame 1 on (one per 3x3 stratum, the square's strata
+  // changed by half) and, for the split, a third of the color as indirect.
+  const auto frame = [&](int k, bool split) {
+    Frame f = scene.frame(k);
+    f.gradient = Image(f.width(), f.height(), 3);
+    if (k > 0)
+      for (int y = k % kGradientStratum; y < f.height(); y += kGradientStratum)
+        for (int x = (k + y) % kGradientStratum; x < f.width(); x += kGradientStratum) {
+          const float l = luminance(f.reference.rgb().load(y * f.width() + x));
+          f.gradient.at(x, y, 0) = scene.on_square(x, y, k) ? 1.5f * l : l;
+          f.gradient.at(x, y, 1) = l;
+          f.gradient.at(x, y, 2) = 1.f;
+        }
+    if (split) {
+      f.direct = f.color;
+      f.indirect = f.color;
+      for (size_t i = 0; i < f.color.data().size(); ++i) {
+        f.indirect.data()[i] = f.color.data()[i] / 3.f;
+        f.direct.data()[i] = f.color.data()[i] - f.indirect.data()[i];
+      }
+    }
+    return f;
+  };
+  SvgfParams tap = SvgfParams();
+  tap.feedback_tap = 1;
+  SvgfParams split = tap;
+  split.split = SplitMode::On;
+  split.indirect_iterations = 5;
+  SvgfParams taa;
+  taa.taa = true;
+  SvgfParams none;
+  none.iterations = 0;
+  SvgfParams statistics = svgf_preset("falcor");
+  statistics.antilag = Antilag::Statistics;
+  const std::pair<const char*, SvgfParams> settings[] = {
+      {"defaults", SvgfParams()}, {"feedback tap 1", tap}, {"split", split},
+      {"taa", taa},               {"no iteration", none},  {"falcor, statistics", statistics}};
+  for (const auto& [name, p] : settings) {
+    DenoiserConfig c = config_for(device);
+    c.svgf = p;
+    auto shared = make_denoiser(c);
+    c.keep_scratch = true;
+    auto kept = make_denoiser(c);
+    for (const char* scratch : {svgf_buffer::kIllumination, svgf_buffer::kAccumulated}) {
+      REQUIRE_THROWS_WITH(shared->read_buffer(scratch), Catch::Contains("keep_scratch"));
+      const auto names = shared->debug_buffers();
+      REQUIRE(std::find(names.begin(), names.end(), scratch) == names.end());
+      REQUIRE(kept->read_buffer(scratch).empty());  // before the first frame
+    }
+    REQUIRE(kept->debug_buffers().size() == shared->debug_buffers().size() + 2);
+    for (int k = 0; k < 6; ++k) {
+      if (k == 4) {
+        shared->reset();
+        kept->reset();
+      }
+      const Frame f = frame(k, p.split == SplitMode::On);
+      Image a, b;
+      shared->denoise(f, a);
+      kept->denoise(f, b);
+      const std::string where = std::string(name) + ", frame " + std::to_string(k);
+      test::require_identical(a, b, where + ": output (scratch shared vs kept)");
+      for (const std::string& buffer : shared->debug_buffers())
+        test::require_identical(shared->read_buffer(buffer), kept->read_buffer(buffer),
+                                where + ": " + buffer);
+    }
+  }
+}
+
 // A camera dollying towards a wall changes the depth of every point it sees (by 10% here),
 // while nothing in view moves: the reprojection compares the previous depth with the point's
 // depth in the previous camera (reproject_camera_depth, core/previous_depth.h), so every pixel
@@ -397,6 +475,8 @@ SVGF_DEVICE_TEST("pipeline: the feedback tap is what the next frame reads", "[pi
 SVGF_DEVICE_TEST("pipeline: NaN, Inf and negative input is counted and does not poison the history",
                  "[pipeline]", bad_input_does_not_poison)
 SVGF_DEVICE_TEST("pipeline: reset() restarts the history", "[pipeline]", reset_restarts_history)
+SVGF_DEVICE_TEST("pipeline: the scratch shared with the a-trous buffers changes no bits",
+                 "[pipeline]", shared_scratch_changes_no_bits)
 SVGF_DEVICE_TEST("pipeline: a dollying camera keeps the history of the still wall it sees",
                  "[pipeline]", camera_motion_keeps_history)
 SVGF_DEVICE_TEST("pipeline: the defaults are their documented values, as the pipeline uses them",

@@ -22,9 +22,11 @@ template <class Backend>
 class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
  public:
   SvgfDenoiser(const SvgfParams& params, const EngineConfig& config)
-      : params_(params), mode_(config.mode), backend_(config) {
+      : params_(params), mode_(config.mode), keep_scratch_(config.keep_scratch),
+        backend_(config) {
     params_.validate();
-    backend_.set_method_planes(2 * (3 + 2 + 1 + 4) + 3 + (accumulates_color() ? 4 : 1) +
+    backend_.set_method_planes(2 * (3 + 2 + 1 + 4) +
+                               (keep_scratch_ ? 3 + (accumulates_color() ? 4 : 1) : 0) +
                                (packs_guides() ? 4 : 0) +
                                (gradient_mode() ? 1 : 0) + (params_.taa ? 3 * 3 : 0));
     // The frame reads the input color in the demodulation and the reprojection only, both done
@@ -38,13 +40,18 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
   std::string description() const override { return "svgf " + backend_.description(); }
   std::vector<std::string> stages() const override { return svgf_stage::all(params_.taa); }
   std::vector<std::string> debug_buffers() const override {
-    return svgf_buffer::all(params_.taa);
+    return svgf_buffer::all(params_.taa, keep_scratch_);
   }
 
   // After a split frame the history buffers are the direct signal's, and the scratch
   // (illumination, accumulated) the indirect's, which ran last.
   Image read_buffer(std::string_view name) const override {
     namespace buf = svgf_buffer;
+    if (!keep_scratch_ && (name == buf::kIllumination || name == buf::kAccumulated))
+      throw std::invalid_argument(
+          "svgf: debug buffer '" + std::string(name) +
+          "' is frame scratch the a-trous buffers overwrite; create the denoiser with "
+          "keep_scratch (EngineConfig) to read it");
     const auto pick = [&]() -> const typename Backend::Buffer* {
       if (name == buf::kIllumination) return &illumination_;
       if (name == buf::kAccumulated) return &accumulated_;
@@ -84,7 +91,7 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
     // their own.
     // A backend that sanitizes in its own planes leaves that stage to the frame, which fuses
     // it into its first kernel where it can (run_svgf_frame).
-    float* gradient_into = gradient_mode() ? backend_.plane(illumination_, 0) : nullptr;
+    float* gradient_into = gradient_mode() ? illumination_planes().r : nullptr;
     const FrameInputs cur =
         backend_.inputs(in, /*position=*/false, split, gradient_into, /*defer_sanitize=*/true);
 
@@ -215,13 +222,14 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
     b.next_moment1 = backend_.plane(moments_[set][next], 0);
     b.next_moment2 = backend_.plane(moments_[set][next], 1);
     b.next_history = backend_.plane(history_[set][next], 0);
-    b.illumination = backend_.rgb(illumination_);
+    b.illumination = illumination_planes();
     // The accumulation's variance; its color only where an iteration is fed back (otherwise
     // the pipeline accumulates into the color history, methods/svgf/pipeline.h).
+    auto& acc = keep_scratch_ ? accumulated_ : signal_[1];
     if (accumulates_color())
-      b.accumulated = {backend_.rgb(accumulated_), backend_.plane(accumulated_, 3)};
+      b.accumulated = {backend_.rgb(acc), backend_.plane(acc, 3)};
     else
-      b.accumulated = {RgbView(), backend_.plane(accumulated_, 0)};
+      b.accumulated = {RgbView(), backend_.plane(acc, 0)};
     b.signal[0] = backend_.plane(signal_[0], 0);
     b.signal[1] = backend_.plane(signal_[1], 0);
     b.output = output;
@@ -239,6 +247,18 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
     return params_.feeds_back_iteration() || params_.indirect().feeds_back_iteration();
   }
 
+  // The frame's scratch (issue 14 item 5). The illumination lives from the demodulation to the
+  // end of the reprojection, the accumulation from the reprojection to the end of the variance
+  // stage, and the gradient samples (in the illumination's planes) until the gradient stages
+  // have read them; the a-trous buffer 0 is first written by the variance stage, buffer 1 by
+  // the first a-trous iteration (run_svgf_frame, methods/svgf/pipeline.h). So, unless the
+  // caller keeps the scratch to read it back, the illumination takes a-trous buffer 0's first
+  // three planes and the accumulation (1 or 4 planes) buffer 1's: 4 planes fewer. A split
+  // frame's two signals run these stages one after the other, so they share them too.
+  RgbView illumination_planes() {
+    return backend_.rgb(keep_scratch_ ? illumination_ : signal_[0]);
+  }
+
   void allocate() {
     split_allocated_ = false;
     try {
@@ -248,8 +268,10 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
         backend_.allocate(history_[0][s], 1, "history length");
         backend_.allocate(signal_[s], 4, "a-trous buffers");
       }
-      backend_.allocate(illumination_, 3, "illumination");
-      backend_.allocate(accumulated_, accumulates_color() ? 4 : 1, "accumulation");
+      if (keep_scratch_) {
+        backend_.allocate(illumination_, 3, "illumination");
+        backend_.allocate(accumulated_, accumulates_color() ? 4 : 1, "accumulation");
+      }
       if (packs_guides()) backend_.allocate(packed_guides_, 4, "packed guides");
       if (params_.taa) {
         backend_.allocate(remodulated_, 3, "remodulated color");
@@ -303,6 +325,7 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
 
   SvgfParams params_;
   Mode mode_;
+  bool keep_scratch_;
   Backend backend_;
   int slot_ = 0;  // history slot the next frame reads
   bool has_history_ = false;

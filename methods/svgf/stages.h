@@ -41,9 +41,12 @@ inline constexpr const char* kHistoryLength = "history_length";  // 1
 inline constexpr const char* kColorHistory = "color_history";    // 3: the feedback tap
 inline constexpr const char* kTaaHistory = "taa_history";        // 3: only with --svgf-taa on
 
-inline std::vector<std::string> all(bool taa) {
-  std::vector<std::string> v = {kIllumination, kAccumulated, kMoments, kHistoryLength,
-                                kColorHistory};
+// The illumination and the accumulation are frame scratch: readable only where the denoiser
+// keeps them apart (EngineConfig::keep_scratch; else the a-trous buffers reuse their memory).
+inline std::vector<std::string> all(bool taa, bool scratch) {
+  std::vector<std::string> v;
+  if (scratch) v = {kIllumination, kAccumulated};
+  for (const char* name : {kMoments, kHistoryLength, kColorHistory}) v.push_back(name);
   if (taa) v.push_back(kTaaHistory);
   return v;
 }
