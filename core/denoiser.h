@@ -39,8 +39,9 @@ struct EngineConfig {
   // Keep a method's frame scratch in buffers of its own, so that read_buffer() can return it
   // after the frame (SVGF: the illumination and the accumulation). Off, a method may place
   // that scratch in memory a later stage of the same frame overwrites (SVGF: its a-trous
-  // buffers, 4 planes of the frame's size less) and debug_buffers() leaves it out. The output
-  // and every other buffer are the same bits either way.
+  // buffers, 4 planes of the frame's size less, 5 with A-SVGF's stratum image) and
+  // debug_buffers() leaves it out. The output and every other buffer are the same bits either
+  // way.
   bool keep_scratch = false;
 };
 

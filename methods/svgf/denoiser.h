@@ -25,10 +25,11 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
       : params_(params), mode_(config.mode), keep_scratch_(config.keep_scratch),
         backend_(config) {
     params_.validate();
-    backend_.set_method_planes(2 * (3 + 2 + 1 + 4) +
-                               (keep_scratch_ ? 3 + (accumulates_color() ? 4 : 1) : 0) +
-                               (packs_guides() ? 4 : 0) +
-                               (gradient_mode() ? 1 : 0) + (params_.taa ? 3 * 3 : 0));
+    backend_.set_method_planes(
+        2 * (3 + 2 + 1 + 4) + (keep_scratch_ ? 3 + (accumulates_color() ? 4 : 1) : 0) +
+        (packs_guides() ? 4 : 0) +
+        (gradient_mode() && (keep_scratch_ || params_.split != SplitMode::Off) ? 1 : 0) +
+        (params_.taa ? 3 * 3 : 0));
     // The frame reads the input color in the demodulation and the reprojection only, both done
     // before the remodulation (or TAA) writes the first output pixel (run_svgf_frame): the
     // output may take the color's planes on a backend that copies its inputs.
@@ -110,7 +111,7 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
       b.next_taa = backend_.rgb(taa_history_[1 - slot_]);
     }
     if (gradient_mode()) {
-      b.strata = backend_.plane(strata_, 0);
+      b.strata = strata_shared_ ? backend_.plane(signal_[0], 3) : backend_.plane(strata_, 0);
       if (has_gradient_samples(in)) b.gradient_samples = cur.gradient;
     }
     SvgfFrameBuffers indirect;
@@ -253,8 +254,9 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
   // have read them; the a-trous buffer 0 is first written by the variance stage, buffer 1 by
   // the first a-trous iteration (run_svgf_frame, methods/svgf/pipeline.h). So, unless the
   // caller keeps the scratch to read it back, the illumination takes a-trous buffer 0's first
-  // three planes and the accumulation (1 or 4 planes) buffer 1's: 4 planes fewer. A split
-  // frame's two signals run these stages one after the other, so they share them too.
+  // three planes and the accumulation (1 or 4 planes) buffer 1's: 4 planes fewer (5 with
+  // A-SVGF's stratum image, allocate()). A split frame's two signals run these stages one after
+  // the other, so they share them too.
   RgbView illumination_planes() {
     return backend_.rgb(keep_scratch_ ? illumination_ : signal_[0]);
   }
@@ -277,7 +279,12 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
         backend_.allocate(remodulated_, 3, "remodulated color");
         for (auto& t : taa_history_) backend_.allocate(t, 3, "TAA history");
       }
-      if (gradient_mode())
+      // A-SVGF's stratum image lives from the gradient stages to the end of the reprojection
+      // (its lambda): in a-trous buffer 0's fourth plane where it fits one, beside the gradient
+      // samples and the illumination, until a split frame comes (its indirect signal reads
+      // lambda after the direct signal's variance stage has written buffer 0).
+      strata_shared_ = gradient_mode() && !keep_scratch_ && stratum_buffer_planes() == 1;
+      if (gradient_mode() && !strata_shared_)
         backend_.allocate(strata_, stratum_buffer_planes(), "gradient strata");
     } catch (...) {
       release();  // nothing half-made stays; a later frame may try again
@@ -295,6 +302,10 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
         backend_.allocate(history_[1][s], 1, "indirect history length");
       }
       backend_.allocate(indirect_output_, 3, "indirect output");
+      if (strata_shared_) {
+        backend_.allocate(strata_, stratum_buffer_planes(), "gradient strata");
+        strata_shared_ = false;
+      }
     } catch (...) {
       release();
       throw;
@@ -320,12 +331,14 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
     accumulated_ = {};
     packed_guides_ = {};
     strata_ = {};
+    strata_shared_ = false;
     backend_.release();
   }
 
   SvgfParams params_;
   Mode mode_;
   bool keep_scratch_;
+  bool strata_shared_ = false;  // the stratum image in a-trous buffer 0's fourth plane
   Backend backend_;
   int slot_ = 0;  // history slot the next frame reads
   bool has_history_ = false;
