@@ -340,12 +340,13 @@ void taa_follows_remodulation(const TestDevice& device) {
   }
 }
 
-// Without EngineConfig::keep_scratch (the default) the illumination and the accumulation live
-// in the a-trous buffers' memory (methods/svgf/denoiser.h): the output and every buffer a
-// caller can still read are the same bits as with the scratch kept, on every branch the frame
-// takes (A-SVGF's gradient samples, a fed-back iteration's 4-plane accumulation, direct and
-// indirect, TAA, no a-trous iteration, the statistics anti-lag, a reset). The scratch is then
-// not a debug buffer, and reading it names the option.
+// Without EngineConfig::keep_scratch (the default) the illumination, the accumulation and
+// A-SVGF's stratum image live in the a-trous buffers' memory (methods/svgf/denoiser.h): the
+// output and every buffer a caller can still read are the same bits as with the scratch kept,
+// on every branch the frame takes (A-SVGF's gradient samples, a fed-back iteration's 4-plane
+// accumulation, direct and indirect, TAA, no a-trous iteration, the statistics anti-lag, a
+// reset). The illumination and the accumulation are then not debug buffers, and reading one
+// names the option.
 void shared_scratch_changes_no_bits(const TestDevice& device) {
   test::SyntheticScene scene;
   // Frames with A-SVGF's samples from frame 1 on (one per 3x3 stratum, the square's strata
@@ -371,7 +372,7 @@ void shared_scratch_changes_no_bits(const TestDevice& device) {
     }
     return f;
   };
-  SvgfParams tap = SvgfParams();
+  SvgfParams tap;
   tap.feedback_tap = 1;
   SvgfParams split = tap;
   split.split = SplitMode::On;
