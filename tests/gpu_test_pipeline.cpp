@@ -92,35 +92,12 @@ std::vector<Source> sources() {
           }
         }
     }
-    // A-SVGF's gradient samples from frame 1 on (read by --antilag gradient only), one per 3x3
-    // stratum: the square's strata changed by half, the rest not at all.
-    f.gradient = Image(f.width(), f.height(), 3);
-    if (k > 0)
-      for (int y = k % kGradientStratum; y < f.height(); y += kGradientStratum)
-        for (int x = (k + y) % kGradientStratum; x < f.width(); x += kGradientStratum) {
-          const float l = luminance(f.reference.rgb().load(y * f.width() + x));
-          f.gradient.at(x, y, 0) = scene.on_square(x, y, k) ? 1.5f * l : l;
-          f.gradient.at(x, y, 1) = l;
-          f.gradient.at(x, y, 2) = 1.f;
-        }
+    scene.add_gradient_samples(f);
     return f;
   };
   s.cut = [](int k) { return k == 6; };
   out.push_back(s);
   return out;
-}
-
-// The frame's color split: a third of the reflected light (color - emission) as indirect, the
-// rest as direct.
-Frame with_split(Frame f) {
-  f.direct = f.color;
-  f.indirect = Image(f.width(), f.height(), 3);
-  for (size_t i = 0; i < f.color.data().size(); ++i) {
-    const float emitted = f.emission.empty() ? 0.f : f.emission.data()[i];
-    f.indirect.data()[i] = std::max(0.f, f.color.data()[i] - emitted) / 3.f;
-    f.direct.data()[i] = f.color.data()[i] - f.indirect.data()[i];
-  }
-  return f;
 }
 
 void count_values(const Image& im) { tally().frame_values += static_cast<int64_t>(im.data().size()); }
@@ -181,7 +158,7 @@ TEST_CASE("pipeline: CPU vs CUDA exact bitwise over whole sequences; fast within
     auto exact = make(Backend::Cuda, Mode::Exact);
     auto fast = make(Backend::Cuda, Mode::Fast);
     for (int k = 0; k < src.frames; ++k) {
-      const Frame f = params.split == SplitMode::On ? with_split(src.frame(k)) : src.frame(k);
+      const Frame f = params.split == SplitMode::On ? test::with_split(src.frame(k)) : src.frame(k);
       const std::string where = src.name + " (" + setting + "), frame " + std::to_string(k);
       if (k > 0 && src.cut(k)) {
         cpu->reset();

@@ -5,6 +5,7 @@
 #include <functional>
 #include <limits>
 #include <thread>
+#include <utility>
 
 #include <catch2/catch.hpp>
 
@@ -349,28 +350,11 @@ void taa_follows_remodulation(const TestDevice& device) {
 // names the option.
 void shared_scratch_changes_no_bits(const TestDevice& device) {
   test::SyntheticScene scene;
-  // Frames with A-SVGF's samples from frame 1 on (one per 3x3 stratum, the square's strata
-  // changed by half) and, for the split, a third of the color as indirect.
+  // Frames with A-SVGF's samples from frame 1 on and, for the split, a third as indirect.
   const auto frame = [&](int k, bool split) {
     Frame f = scene.frame(k);
-    f.gradient = Image(f.width(), f.height(), 3);
-    if (k > 0)
-      for (int y = k % kGradientStratum; y < f.height(); y += kGradientStratum)
-        for (int x = (k + y) % kGradientStratum; x < f.width(); x += kGradientStratum) {
-          const float l = luminance(f.reference.rgb().load(y * f.width() + x));
-          f.gradient.at(x, y, 0) = scene.on_square(x, y, k) ? 1.5f * l : l;
-          f.gradient.at(x, y, 1) = l;
-          f.gradient.at(x, y, 2) = 1.f;
-        }
-    if (split) {
-      f.direct = f.color;
-      f.indirect = f.color;
-      for (size_t i = 0; i < f.color.data().size(); ++i) {
-        f.indirect.data()[i] = f.color.data()[i] / 3.f;
-        f.direct.data()[i] = f.color.data()[i] - f.indirect.data()[i];
-      }
-    }
-    return f;
+    scene.add_gradient_samples(f);
+    return split ? test::with_split(std::move(f)) : f;
   };
   SvgfParams tap;
   tap.feedback_tap = 1;

@@ -2,10 +2,12 @@
 // A moving test sequence generated in code: a textured wall (mesh 1, depth 4) with a square
 // (mesh 2, depth 2) sliding right by `speed` pixels a frame. The lighting is a smooth ramp, the
 // noisy color is the reference times a mean-1 random factor per pixel and frame.
+#include <algorithm>
 #include <cstdint>
 #include <random>
 
 #include "core/frame.h"
+#include "core/vec.h"
 
 namespace svgf::test {
 
@@ -51,6 +53,35 @@ struct SyntheticScene {
       }
     return f;
   }
+
+  // A-SVGF's gradient samples for frame `f` (from frame 1 on; read by --antilag gradient
+  // only), one per 3x3 stratum at a position that moves with the frame: the square's strata
+  // changed by half, the rest not at all.
+  void add_gradient_samples(Frame& f) const {
+    const int k = f.index;
+    f.gradient = Image(f.width(), f.height(), 3);
+    if (k <= 0) return;
+    for (int y = k % kGradientStratum; y < f.height(); y += kGradientStratum)
+      for (int x = (k + y) % kGradientStratum; x < f.width(); x += kGradientStratum) {
+        const float l = luminance(f.reference.rgb().load(y * f.width() + x));
+        f.gradient.at(x, y, 0) = on_square(x, y, k) ? 1.5f * l : l;
+        f.gradient.at(x, y, 1) = l;
+        f.gradient.at(x, y, 2) = 1.f;
+      }
+  }
 };
+
+// The frame's color split: a third of the reflected light (color - emission) as indirect, the
+// rest as direct.
+inline Frame with_split(Frame f) {
+  f.direct = f.color;
+  f.indirect = Image(f.width(), f.height(), 3);
+  for (size_t i = 0; i < f.color.data().size(); ++i) {
+    const float emitted = f.emission.empty() ? 0.f : f.emission.data()[i];
+    f.indirect.data()[i] = std::max(0.f, f.color.data()[i] - emitted) / 3.f;
+    f.direct.data()[i] = f.color.data()[i] - f.indirect.data()[i];
+  }
+  return f;
+}
 
 }  // namespace svgf::test
