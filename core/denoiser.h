@@ -40,8 +40,9 @@ struct EngineConfig {
   // after the frame (SVGF: the illumination and the accumulation). Off, a method may place
   // that scratch in memory a later stage of the same frame overwrites (SVGF: its a-trous
   // buffers, 4 planes of the frame's size less, 5 with A-SVGF's stratum image) and
-  // debug_buffers() leaves it out. The output and every other buffer are the same bits either
-  // way.
+  // debug_buffers() leaves it out, and may overwrite a history in place where the frame reads
+  // it before it writes the next (SVGF: a color history fed by an iteration, 3 planes less).
+  // The output and every other buffer are the same bits either way.
   bool keep_scratch = false;
 };
 

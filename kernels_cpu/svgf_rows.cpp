@@ -433,6 +433,11 @@ void variance_row(const VarianceKernel& k, const float* __restrict lum, int y, R
                         k.accumulated.color.b + row, k.accumulated.variance + row,
                         k.history + row, k.out.color.r + row, k.out.color.g + row,
                         k.out.color.b + row, k.out.variance + row, w, k.params);
+  if (k.color_history.r) {  // the color history's one slot (methods/svgf/variance.h)
+    std::copy_n(k.accumulated.color.r + row, w, k.color_history.r + row);
+    std::copy_n(k.accumulated.color.g + row, w, k.color_history.g + row);
+    std::copy_n(k.accumulated.color.b + row, w, k.color_history.b + row);
+  }
   // The 7x7 work runs only over runs of pixels that need it (young history on a surface): after
   // a disocclusion, or at the edge a camera pan uncovers, they are short. Runs closer than
   // kGap pixels share one span (fewer, longer vector loops), and a span is widened to whole

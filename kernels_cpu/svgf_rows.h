@@ -55,7 +55,8 @@ template <class Power>
 struct PixelDriver<VarianceEstimate<SvgfExact, Power, IllumVarView>> {
   static void run(const VarianceEstimate<SvgfExact, Power, IllumVarView>& k, int w, int h) {
     run_variance_rows(
-        VarianceKernel{k.guides, k.accumulated, k.moment1, k.moment2, k.history, k.out, k.params},
+        VarianceKernel{k.guides, k.accumulated, k.moment1, k.moment2, k.history, k.out, k.params,
+                       k.color_history},
         w, h);
   }
 };

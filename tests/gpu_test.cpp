@@ -216,15 +216,18 @@ TEST_CASE("stage reproject: CPU vs CUDA bitwise on random input", "[stage]") {
 }
 
 // The GPU runs the young pixels' 7x7 estimate on compacted threads (core/rare_path.h): half,
-// none and all of the pixels young.
+// none and all of the pixels young; every pixel's accumulated color copied into the color
+// history by either path.
 TEST_CASE("stage variance: CPU vs CUDA bitwise on random input", "[stage]") {
   for (double young : {0.5, 0.0, 1.0})
     for (Size s : sizes())
       for (cuda::LaunchShape b : shapes()) {
-        Arena a(s.w, s.h, 24);
+        Arena a(s.w, s.h, 27);
         Random r(37u + static_cast<uint32_t>(s.w * 3));
-        const VarianceKernel k = random_variance_kernel(a, r, young, 0.f);
+        VarianceKernel k = random_variance_kernel(a, r, young, 0.f);
         r.fill(k.out.color.r, 4 * a.pixels(), 7.f, 8.f);
+        k.color_history = a.rgb("color history");
+        r.fill(k.color_history.r, 3 * a.pixels(), 5.f, 6.f);
         check_stage(a, k, label("variance", s, b, ", young share " + std::to_string(young)), b);
       }
 }

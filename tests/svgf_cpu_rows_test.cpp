@@ -1,5 +1,6 @@
 // The vectorized CPU row drivers must give the per-pixel kernels' bits exactly (the per-pixel
 // kernels are what the GPU runs), for every step, border, power and guide oddity.
+#include <algorithm>
 #include <limits>
 
 #include <catch2/catch.hpp>
@@ -48,22 +49,30 @@ void require_atrous_rows_match(const Frame& f, const Image& in, float phi, int s
                                     std::to_string(phi));
 }
 
-// The spatial variance estimate, likewise.
+// The spatial variance estimate, likewise, with its copy of the accumulated color into the
+// color history (VarianceEstimate::color_history), which must hold every pixel's.
 void require_variance_rows_match(const Frame& f, const Image& acc, const Image& moments,
                                  const Image& history, float phi, int radius = 3) {
   const int w = acc.width(), h = acc.height();
-  Image a(w, h, 4), b(w, h, 4);
+  Image a(w, h, 4), b(w, h, 4), history_a(w, h, 3, -1.f), history_b(w, h, 3, -2.f);
   SvgfParams p;
   p.phi_normal = phi;
   p.spatial_variance_radius = radius;
   const VarianceKernel k{f.guides(), {acc.rgb(), acc.plane(3)}, moments.plane(0),
-                         moments.plane(1), history.plane(0), {a.rgb(), a.plane(3)}, p};
+                         moments.plane(1), history.plane(0), {a.rgb(), a.plane(3)}, p,
+                         history_a.rgb()};
   VarianceKernel k2 = k;
   k2.out = {b.rgb(), b.plane(3)};
+  k2.color_history = history_b.rgb();
   cpu::for_each_pixel(w, h, k);
   cpu::run_variance_rows(k2, w, h);
-  test::require_identical(b, a, "variance " + std::to_string(w) + "x" + std::to_string(h) +
-                                   ", radius " + std::to_string(radius));
+  const std::string where = "variance " + std::to_string(w) + "x" + std::to_string(h) +
+                            ", radius " + std::to_string(radius);
+  test::require_identical(b, a, where);
+  test::require_identical(history_b, history_a, where + ", color history");
+  Image acc_color(w, h, 3);
+  for (int c = 0; c < 3; ++c) std::copy_n(acc.plane(c), w * h, acc_color.plane(c));
+  test::require_identical(history_a, acc_color, where + ", color history against the accumulation");
 }
 
 }  // namespace

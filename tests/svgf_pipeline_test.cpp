@@ -342,12 +342,13 @@ void taa_follows_remodulation(const TestDevice& device) {
 }
 
 // Without EngineConfig::keep_scratch (the default) the illumination, the accumulation and
-// A-SVGF's stratum image live in the a-trous buffers' memory (methods/svgf/denoiser.h): the
-// output and every buffer a caller can still read are the same bits as with the scratch kept,
-// on every branch the frame takes (A-SVGF's gradient samples, a fed-back iteration's 4-plane
-// accumulation, direct and indirect, TAA, no a-trous iteration, the statistics anti-lag, a
-// reset). The illumination and the accumulation are then not debug buffers, and reading one
-// names the option.
+// A-SVGF's stratum image live in the a-trous buffers' memory, and a color history fed by an
+// iteration has one slot, overwritten in place (methods/svgf/denoiser.h): the output and every
+// buffer a caller can still read are the same bits as with the scratch kept, on every branch
+// the frame takes (A-SVGF's gradient samples, a fed-back iteration's 4-plane accumulation,
+// direct and indirect, an indirect signal without a fed-back iteration beside a direct one
+// with, TAA, no a-trous iteration, the statistics anti-lag, a reset). The illumination and the
+// accumulation are then not debug buffers, and reading one names the option.
 void shared_scratch_changes_no_bits(const TestDevice& device) {
   test::SyntheticScene scene;
   // Frames with A-SVGF's samples from frame 1 on and, for the split, a third as indirect.
@@ -361,6 +362,8 @@ void shared_scratch_changes_no_bits(const TestDevice& device) {
   SvgfParams split = tap;
   split.split = SplitMode::On;
   split.indirect_iterations = 5;
+  SvgfParams split_unfed = split;  // the indirect signal's color history in two slots
+  split_unfed.indirect_iterations = 0;
   SvgfParams taa;
   taa.taa = true;
   SvgfParams none;
@@ -368,8 +371,13 @@ void shared_scratch_changes_no_bits(const TestDevice& device) {
   SvgfParams statistics = svgf_preset("falcor");
   statistics.antilag = Antilag::Statistics;
   const std::pair<const char*, SvgfParams> settings[] = {
-      {"defaults", SvgfParams()}, {"feedback tap 1", tap}, {"split", split},
-      {"taa", taa},               {"no iteration", none},  {"falcor, statistics", statistics}};
+      {"defaults", SvgfParams()},
+      {"feedback tap 1", tap},
+      {"split", split},
+      {"split, indirect without iterations", split_unfed},
+      {"taa", taa},
+      {"no iteration", none},
+      {"falcor, statistics", statistics}};
   for (const auto& [name, p] : settings) {
     DenoiserConfig c = config_for(device);
     c.svgf = p;

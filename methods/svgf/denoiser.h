@@ -2,8 +2,9 @@
 // SVGF behind the Denoiser interface, written once over a backend (kernels_cpu/cpu_backend.h
 // says what a backend provides; kernels_cpu/svgf_cpu.cpp and kernels_cuda/svgf_cuda.cu
 // instantiate it). The history ping-pongs between two slots: a frame reads slot `slot_` and
-// writes the other. A frame split into direct and indirect (SvgfParams::split) filters direct
-// with the history below and indirect with a second one, allocated on the first split frame.
+// writes the other (the color history has one, overwritten in place: color_history_slots).
+// A frame split into direct and indirect (SvgfParams::split) filters direct with the history
+// below and indirect with a second one, allocated on the first split frame.
 #include <algorithm>
 #include <stdexcept>
 #include <string>
@@ -26,7 +27,8 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
         backend_(config) {
     params_.validate();
     backend_.set_method_planes(
-        2 * (3 + 2 + 1 + 4) + (keep_scratch_ ? 3 + (accumulates_color() ? 4 : 1) : 0) +
+        3 * color_history_slots() + 2 * (2 + 1 + 4) +
+        (keep_scratch_ ? 3 + (accumulates_color() ? 4 : 1) : 0) +
         (packs_guides() ? 4 : 0) +
         (gradient_mode() && (keep_scratch_ || params_.split != SplitMode::Off) ? 1 : 0) +
         (params_.taa ? 3 * 3 : 0));
@@ -58,7 +60,7 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
       if (name == buf::kAccumulated) return &accumulated_;
       if (name == buf::kMoments) return &moments_[0][slot_];
       if (name == buf::kHistoryLength) return &history_[0][slot_];
-      if (name == buf::kColorHistory) return &color_history_[0][slot_];
+      if (name == buf::kColorHistory) return &color_history(0, slot_);
       if (name == buf::kTaaHistory && params_.taa) return &taa_history_[slot_];
       return nullptr;
     };
@@ -148,7 +150,7 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
   // one after a split frame, as for the shared variance plane) wrote its color into the color
   // history: no iteration of it fed back.
   Image accumulation() const {
-    const Image color = backend_.read(color_history_[split_history_ ? 1 : 0][slot_]);
+    const Image color = backend_.read(color_history(split_history_ ? 1 : 0, slot_));
     const Image variance = backend_.read(accumulated_);
     Image out(color.width(), color.height(), 4);
     const size_t n = static_cast<size_t>(color.width()) * color.height();
@@ -215,11 +217,12 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
     b.color = cur.color;
     b.albedo = cur.albedo;
     b.emission = cur.emission;
-    b.prev_color = backend_.rgb(color_history_[set][prev]);
+    b.prev_color = backend_.rgb(color_history(set, prev));
     b.prev_moment1 = backend_.plane(moments_[set][prev], 0);
     b.prev_moment2 = backend_.plane(moments_[set][prev], 1);
     b.prev_history = backend_.plane(history_[set][prev], 0);
-    b.next_color = backend_.rgb(color_history_[set][next]);
+    b.next_color = backend_.rgb(color_history(set, next));
+    b.color_history_in_place = color_history_slots() == 1;
     b.next_moment1 = backend_.plane(moments_[set][next], 0);
     b.next_moment2 = backend_.plane(moments_[set][next], 1);
     b.next_history = backend_.plane(history_[set][next], 0);
@@ -243,9 +246,25 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
     run_svgf_frame<Flavor>(engine, b, params_, has_history_, split ? &indirect : nullptr);
   }
 
-  // Whether a signal needs the accumulation's color planes: an iteration is fed back.
+  // Whether a signal needs the accumulation's color planes: an iteration is fed back, or the
+  // color history has one slot (which the reprojection is still reading while it accumulates).
   bool accumulates_color() const {
-    return params_.feeds_back_iteration() || params_.indirect().feeds_back_iteration();
+    return params_.feeds_back_iteration() || params_.indirect().feeds_back_iteration() ||
+           color_history_slots() == 1;
+  }
+
+  // The color history's slots (issue 14 item 5). The previous frame's color history is read by
+  // the reprojection alone; the next one is written after it, by the fed-back iteration or,
+  // without one, by the variance stage from the accumulation (run_svgf_signal,
+  // methods/svgf/pipeline.h): one slot, overwritten in place, 3 planes fewer (6 split). With
+  // keep_scratch, two: the reprojection writes the accumulation's color into the next slot
+  // when no iteration is fed back, the layout the shared one is tested against, bit for bit.
+  int color_history_slots() const { return keep_scratch_ ? 2 : 1; }
+  typename Backend::Buffer& color_history(int set, int slot) {
+    return color_history_[set][keep_scratch_ ? slot : 0];
+  }
+  const typename Backend::Buffer& color_history(int set, int slot) const {
+    return color_history_[set][keep_scratch_ ? slot : 0];
   }
 
   // The frame's scratch (issue 14 item 5). The illumination lives from the demodulation to the
@@ -265,7 +284,8 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
     split_allocated_ = false;
     try {
       for (int s = 0; s < 2; ++s) {
-        backend_.allocate(color_history_[0][s], 3, "color history");
+        if (s < color_history_slots())
+          backend_.allocate(color_history_[0][s], 3, "color history");
         backend_.allocate(moments_[0][s], 2, "moments");
         backend_.allocate(history_[0][s], 1, "history length");
         backend_.allocate(signal_[s], 4, "a-trous buffers");
@@ -297,7 +317,8 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
   void allocate_split() {
     try {
       for (int s = 0; s < 2; ++s) {
-        backend_.allocate(color_history_[1][s], 3, "indirect color history");
+        if (s < color_history_slots())
+          backend_.allocate(color_history_[1][s], 3, "indirect color history");
         backend_.allocate(moments_[1][s], 2, "indirect moments");
         backend_.allocate(history_[1][s], 1, "indirect history length");
       }

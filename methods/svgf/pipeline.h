@@ -43,6 +43,11 @@ struct SvgfFrameBuffers {
   const float* prev_moment2 = nullptr;
   const float* prev_history = nullptr;
   RgbView next_color;
+  // The color history has one slot (next_color is prev_color), overwritten only after the
+  // reprojection has read it all (SvgfDenoiser::color_history_slots): without a fed-back
+  // iteration the accumulation's color is then copied there by the variance stage instead of
+  // written there by the reprojection.
+  bool color_history_in_place = false;
   float* next_moment1 = nullptr;
   float* next_moment2 = nullptr;
   float* next_history = nullptr;
@@ -274,12 +279,15 @@ void run_svgf_signal(Engine& engine, const SvgfFrameBuffers& buffers, const Svgf
                      bool has_history, const float* lambda, RgbView out,
                      const SanitizeInputs* sanitize = nullptr) {
   namespace stage = svgf_stage;
-  // Without a feedback tap in range the next frame's color history is the accumulation itself:
-  // the reprojection writes its color there, and no pass copies it (the variance reads it from
-  // there; the same values, so the same bits). The caller's accumulation color planes are then
-  // not touched (the denoisers allocate none).
+  // Without a feedback tap in range the next frame's color history is the accumulation itself.
+  // With two history slots the reprojection writes its color there, and no pass copies it (the
+  // variance reads it from there; the same values, so the same bits): the caller's
+  // accumulation color planes are not touched (the denoisers allocate none). With one slot the
+  // reprojection is still reading the previous history at other pixels, so the accumulation
+  // keeps its own planes and the variance stage, which reads every pixel's, copies it there.
   SvgfFrameBuffers b = buffers;
-  if (!p.feeds_back_iteration()) b.accumulated.color = b.next_color;
+  const bool history_from_variance = !p.feeds_back_iteration() && b.color_history_in_place;
+  if (!p.feeds_back_iteration() && !b.color_history_in_place) b.accumulated.color = b.next_color;
   const int w = b.guides.width;
   const int h = b.guides.height;
   const Flavor flavor;
@@ -290,7 +298,7 @@ void run_svgf_signal(Engine& engine, const SvgfFrameBuffers& buffers, const Svgf
 
   // 1. (color - emission) / albedo -> illumination (the inputs are sanitized already).
   // 2. illumination + history -> accumulated color (into the color history when no iteration is
-  //    fed back), moments and history length.
+  //    fed back and the history has two slots), moments and history length.
   //    Fused, the same thread reprojects the illumination it just wrote, and packs the guides.
   //    Unfused with packed guides, the demodulation packs them.
   const PackGuidesKernel pack{b.guides, reinterpret_cast<Packed4*>(b.packed_guides)};
@@ -311,10 +319,12 @@ void run_svgf_signal(Engine& engine, const SvgfFrameBuffers& buffers, const Svgf
 
   Flavor::with_normal_power(p.phi_normal, [&](const auto& power) {
     using Power = std::decay_t<decltype(power)>;
-    // 3. accumulated -> signal 0 with its variance (spatial estimate for young history).
+    // 3. accumulated -> signal 0 with its variance (spatial estimate for young history); the
+    //    accumulated color -> the color history's one slot when no iteration is fed back.
     engine.run(stage::kVariance,
                VarianceEstimate<Flavor, Power>{guides, b.accumulated, b.next_moment1,
-                                               b.next_moment2, b.next_history, signal(0), p},
+                                               b.next_moment2, b.next_history, signal(0), p,
+                                               history_from_variance ? b.next_color : RgbView()},
                w, h);
 
     // 4. a-trous iterations ping-pong between signal 0 and 1; the feedback tap's output becomes

@@ -47,6 +47,9 @@ struct VarianceEstimate {
   const float* history = nullptr;
   Out out;
   SvgfParams params;
+  // Where set, every pixel's accumulated color is copied here too: the color history's one
+  // slot, which the reprojection read until this stage (methods/svgf/pipeline.h).
+  RgbView color_history = {};
 
   SVGF_HD void operator()(int x, int y) const {
     if (!common_path(x, y)) rare_path(x, y);
@@ -60,8 +63,9 @@ struct VarianceEstimate {
     if (h < static_cast<float>(params.spatial_variance_history) &&
         guides.depth_normal(i).depth > 0.f)
       return false;
-    out.store(i, make_color_var(accumulated.color.load(i),
-                                temporal_variance(params, accumulated.variance[i], h)));
+    const Vec3 color = accumulated.color.load(i);
+    if (color_history.r) color_history.store(i, color);
+    out.store(i, make_color_var(color, temporal_variance(params, accumulated.variance[i], h)));
     return true;
   }
 
@@ -70,6 +74,7 @@ struct VarianceEstimate {
     const int i = guides.index(x, y);
     const float h = history[i];
     const Vec3 center_color = accumulated.color.load(i);
+    if (color_history.r) color_history.store(i, center_color);
     const DepthNormal gc = guides.depth_normal(i);
     const EdgeSample c{gc.depth, gc.normal, luminance_with<Arith>(center_color)};
     const float inv_phi_z = inv_depth_tolerance<Arith>(
