@@ -41,7 +41,7 @@ struct EngineConfig {
   // that scratch in memory a later stage of the same frame overwrites (SVGF: its a-trous
   // buffers, 4 planes of the frame's size less, 5 with A-SVGF's stratum image) and
   // debug_buffers() leaves it out, and may overwrite a history in place where the frame reads
-  // it before it writes the next (SVGF: a color history fed by an iteration, 3 planes less).
+  // it all before it writes the next (SVGF: the color history, 3 planes less).
   // The output and every other buffer are the same bits either way.
   bool keep_scratch = false;
 };

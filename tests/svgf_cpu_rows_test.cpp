@@ -72,7 +72,7 @@ void require_variance_rows_match(const Frame& f, const Image& acc, const Image& 
   test::require_identical(history_b, history_a, where + ", color history");
   Image acc_color(w, h, 3);
   for (int c = 0; c < 3; ++c) std::copy_n(acc.plane(c), w * h, acc_color.plane(c));
-  test::require_identical(history_a, acc_color, where + ", color history against the accumulation");
+  test::require_identical(history_a, acc_color, where + ", color history vs accumulation");
 }
 
 }  // namespace

@@ -342,13 +342,14 @@ void taa_follows_remodulation(const TestDevice& device) {
 }
 
 // Without EngineConfig::keep_scratch (the default) the illumination, the accumulation and
-// A-SVGF's stratum image live in the a-trous buffers' memory, and a color history fed by an
-// iteration has one slot, overwritten in place (methods/svgf/denoiser.h): the output and every
-// buffer a caller can still read are the same bits as with the scratch kept, on every branch
-// the frame takes (A-SVGF's gradient samples, a fed-back iteration's 4-plane accumulation,
-// direct and indirect, an indirect signal without a fed-back iteration beside a direct one
-// with, TAA, no a-trous iteration, the statistics anti-lag, a reset). The illumination and the
-// accumulation are then not debug buffers, and reading one names the option.
+// A-SVGF's stratum image live in the a-trous buffers' memory, and the color history has one
+// slot, overwritten in place (methods/svgf/denoiser.h): the output and every buffer a caller
+// can still read are the same bits as with the scratch kept, on every branch the frame takes
+// (A-SVGF's gradient samples, a fed-back iteration's or else the variance stage's write of the
+// color history, direct and indirect, an indirect signal without a fed-back iteration beside a
+// direct one with, TAA, no a-trous iteration, the statistics anti-lag, a reset). The
+// illumination and the accumulation are then not debug buffers, and reading one names the
+// option.
 void shared_scratch_changes_no_bits(const TestDevice& device) {
   test::SyntheticScene scene;
   // Frames with A-SVGF's samples from frame 1 on and, for the split, a third as indirect.
@@ -362,7 +363,7 @@ void shared_scratch_changes_no_bits(const TestDevice& device) {
   SvgfParams split = tap;
   split.split = SplitMode::On;
   split.indirect_iterations = 5;
-  SvgfParams split_unfed = split;  // the indirect signal's color history in two slots
+  SvgfParams split_unfed = split;  // the variance stage writes the indirect color history
   split_unfed.indirect_iterations = 0;
   SvgfParams taa;
   taa.taa = true;
