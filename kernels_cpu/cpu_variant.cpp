@@ -165,6 +165,10 @@ void run_variance_rows(const VarianceKernel& kernel, int width, int height) {
 void run_reproject_rows(const ReprojectKernel& kernel, int width, int height) {
   pick_variant("").reproject_rows(kernel, width, height);
 }
+void run_gradient_samples_rows(const GradientSamplesKernel& kernel, int strata_width,
+                               int strata_height) {
+  pick_variant("").gradient_samples_rows(kernel, strata_width, strata_height);
+}
 void run_gradient_atrous_rows(const GradientAtrousKernel& kernel, int strata_width,
                               int strata_height) {
   pick_variant("").gradient_atrous_rows(kernel, strata_width, strata_height);

@@ -41,6 +41,7 @@ struct CpuVariant {
   void (*atrous_rows)(const AtrousKernel&, int, int);
   void (*variance_rows)(const VarianceKernel&, int, int);
   void (*reproject_rows)(const ReprojectKernel&, int, int);
+  void (*gradient_samples_rows)(const GradientSamplesKernel&, int, int);
   void (*gradient_atrous_rows)(const GradientAtrousKernel&, int, int);
   void (*gradient_lambda_rows)(const GradientLambdaKernel&, int, int);
   void (*wavelet_rows)(const WaveletExactIteration&, int, int);

@@ -1,4 +1,6 @@
-// A-SVGF's gradient a-trous (methods/svgf/gradient.h) on the CPU, a stratum row at a time. The
+// A-SVGF's gradient stages (methods/svgf/gradient.h) on the CPU, a stratum row at a time. The
+// samples: the mask tests of a stratum row's three pixel rows as one vector loop (a byte a
+// pixel), then each stratum's first masked pixel from those bytes. The a-trous: the
 // per-stratum kernel branches on every tap (inside? data? same mesh?) and stays scalar. A row
 // runs its interior strata (all nine taps inside the stratum image) as one vector loop: every
 // tap's weight by the kernel's own functions, added by a select where the kernel adds it, so a
@@ -15,6 +17,34 @@
 
 namespace svgf::cpu {
 namespace {
+
+// Each pixel's mask test (GradientSamplesKernel::masked) as a byte, n pixels (vectorized).
+SVGF_TAP_LOOP void masked_bytes(const float* __restrict mask, uint8_t* __restrict out, int n) {
+  for (int i = 0; i < n; ++i) out[i] = GradientSamplesKernel::masked(mask[i]);
+}
+
+// Stratum row sy of the samples stage: its three pixel rows' mask tests at once (they lie one
+// after the other in the plane), then each stratum of three whole columns finds its first
+// masked pixel in raster order in those bytes and takes its sample by the kernel's sample_at
+// (its centre, for the guides without a sample, at offset 4). A partial last column or row runs
+// the kernel. `masked`: 3 * width bytes.
+void gradient_samples_row(const GradientSamplesKernel& k, int sy, uint8_t* masked) {
+  constexpr int n = kGradientStratum;
+  const int w = k.width, sw = k.strata_width, y0 = sy * n;
+  int whole = 0;  // strata of whole columns, in a stratum row of whole pixel rows
+  if (y0 + n <= k.height) {
+    masked_bytes(k.samples.mask + static_cast<size_t>(y0) * w, masked, n * w);
+    whole = w / n;
+    for (int sx = 0; sx < whole; ++sx) {
+      const int x0 = sx * n;
+      int first = -1;
+      for (int t = n * n - 1; t >= 0; --t)
+        if (masked[(t / n) * w + x0 + t % n]) first = t;
+      k.store(sy * sw + sx, k.sample_at(first, x0, y0, n + 1));
+    }
+  }
+  for (int sx = whole; sx < sw; ++sx) k(sx, sy);
+}
 
 // The guides the taps read, per stratum (at its sample's pixel, StratumGuides::pixel).
 struct StrataGuides {
@@ -132,6 +162,15 @@ void gradient_lambda_row(const GradientLambdaKernel& k, const float* own, int sy
 }
 
 }  // namespace
+
+void run_gradient_samples_rows(const GradientSamplesKernel& kernel, int strata_width,
+                               int strata_height) {
+  (void)strata_width;  // the kernel's own
+  parallel_rows(strata_height, [&](int y0, int y1) {
+    std::vector<uint8_t> masked(static_cast<size_t>(kGradientStratum) * kernel.width);
+    for (int sy = y0; sy < y1; ++sy) gradient_samples_row(kernel, sy, masked.data());
+  });
+}
 
 void run_gradient_lambda_rows(const GradientLambdaKernel& kernel, int strata_width,
                               int strata_height) {

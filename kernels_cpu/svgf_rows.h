@@ -20,6 +20,8 @@ namespace svgf::cpu {
 void run_atrous_rows(const AtrousKernel& kernel, int width, int height);
 void run_variance_rows(const VarianceKernel& kernel, int width, int height);
 void run_reproject_rows(const ReprojectKernel& kernel, int width, int height);
+void run_gradient_samples_rows(const GradientSamplesKernel& kernel, int strata_width,
+                               int strata_height);
 void run_gradient_atrous_rows(const GradientAtrousKernel& kernel, int strata_width,
                               int strata_height);
 void run_gradient_lambda_rows(const GradientLambdaKernel& kernel, int strata_width,
@@ -28,6 +30,13 @@ void run_gradient_lambda_rows(const GradientLambdaKernel& kernel, int strata_wid
 template <>
 struct PixelDriver<ReprojectKernel> {
   static void run(const ReprojectKernel& k, int w, int h) { run_reproject_rows(k, w, h); }
+};
+
+template <>
+struct PixelDriver<GradientSamplesKernel> {
+  static void run(const GradientSamplesKernel& k, int w, int h) {
+    run_gradient_samples_rows(k, w, h);
+  }
 };
 
 template <>

@@ -64,14 +64,15 @@ const char* const kNeeds[] = {
 #endif
     nullptr};
 
-const CpuVariant kVariant = {SVGF_CPU_VARIANT_ID,      SVGF_CPU_VARIANT_NAME,
-                             kNeeds,                   make_svgf_denoiser,
-                             make_gaussian_denoiser,   make_wavelet_denoiser,
-                             make_jbf_denoiser,        make_bmfr_denoiser,
-                             run_atrous_rows,          run_variance_rows,
-                             run_reproject_rows,       run_gradient_atrous_rows,
-                             run_gradient_lambda_rows, run_wavelet_rows,
-                             run_jbf_rows,             run_sanitize_rows};
+const CpuVariant kVariant = {SVGF_CPU_VARIANT_ID,       SVGF_CPU_VARIANT_NAME,
+                             kNeeds,                    make_svgf_denoiser,
+                             make_gaussian_denoiser,    make_wavelet_denoiser,
+                             make_jbf_denoiser,         make_bmfr_denoiser,
+                             run_atrous_rows,           run_variance_rows,
+                             run_reproject_rows,        run_gradient_samples_rows,
+                             run_gradient_atrous_rows,  run_gradient_lambda_rows,
+                             run_wavelet_rows,          run_jbf_rows,
+                             run_sanitize_rows};
 
 }  // namespace
 }  // namespace svgf::cpu

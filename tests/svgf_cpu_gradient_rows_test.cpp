@@ -1,5 +1,5 @@
-// A-SVGF's gradient a-trous and lambda row drivers (kernels_cpu/svgf_gradient_rows.cpp) must
-// give the per-stratum kernels' bits exactly (the kernels are what the GPU runs), on every
+// A-SVGF's gradient sample, a-trous and lambda row drivers (kernels_cpu/svgf_gradient_rows.cpp)
+// must give the per-stratum kernels' bits exactly (the kernels are what the GPU runs), on every
 // instruction-set variant this CPU runs: strata without data, taps on other meshes, NaN / Inf /
 // -0 in the planes and guides, stratum images narrower or lower than the taps' reach, every
 // step and radius.
@@ -148,5 +148,50 @@ TEST_CASE("cpu rows: gradient lambda rows equal the per-stratum kernel bitwise",
       }
       REQUIRE(variants > 0);
     }
+  }
+}
+
+TEST_CASE("cpu rows: gradient sample rows equal the per-stratum kernel bitwise", "[cpu_rows]") {
+  // Frames whose sides are and are not multiples of the stratum (partial last columns and
+  // rows run the kernel), down to one pixel. Masks: strata with none, with one at any of the
+  // nine places, with several (the first in raster order counts), NaN and 0.5 (not masked);
+  // the samples' luminances with NaN, Inf and negative values (no data) and -0.
+  const int sizes[][2] = {{129, 48}, {131, 50}, {3, 3}, {1, 1}, {2, 7}, {64, 5}};
+  uint32_t seed = 900;
+  for (const auto& size : sizes) {
+    const int w = size[0], h = size[1], sw = strata_along(w), sh = strata_along(h);
+    std::mt19937 rng(++seed);
+    std::uniform_real_distribution<float> u(0.f, 1.f);
+    Image samples(w, h, 3);
+    const float odd_values[] = {kNaN, kInf, -1.f, -0.f, 0.f};
+    for (int i = 0; i < w * h; ++i) {
+      samples.plane(0)[i] = u(rng) * 2.f;
+      samples.plane(1)[i] = u(rng) * 2.f;
+      const float r = u(rng);
+      samples.plane(2)[i] = r < 0.12f ? 1.f : (r < 0.14f ? kNaN : (r < 0.16f ? 0.5f : 0.f));
+      if (r > 0.97f) samples.plane(static_cast<int>(r * 1000.f) % 2)[i] = odd_values[i % 5];
+    }
+    GradientSamplesKernel k;
+    k.width = w;
+    k.height = h;
+    k.samples = GradientSampleView{samples.plane(0), samples.plane(1), samples.plane(2)};
+    k.strata_width = sw;
+    Image expected(sw, sh, 4, -1.f);
+    k.out = GradientPlanes<float>(expected.plane(0), expected.plane(1), expected.plane(2));
+    k.guide_offset = expected.plane(3);
+    cpu::for_each_pixel(sw, sh, k);
+    int variants = 0;
+    for (const cpu::CpuVariant* v : cpu::built_variants()) {
+      if (!cpu::runs_here(*v)) continue;
+      Image got(sw, sh, 4, -2.f);
+      GradientSamplesKernel r = k;
+      r.out = GradientPlanes<float>(got.plane(0), got.plane(1), got.plane(2));
+      r.guide_offset = got.plane(3);
+      v->gradient_samples_rows(r, sw, sh);
+      test::require_identical(got, expected, std::to_string(w) + "x" + std::to_string(h) +
+                                                 " pixels on " + v->name);
+      ++variants;
+    }
+    REQUIRE(variants > 0);
   }
 }

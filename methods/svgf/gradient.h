@@ -111,19 +111,11 @@ struct GradientSamplesKernel {
     int guide = 0;
   };
 
-  SVGF_HD void operator()(int sx, int sy) const {
-    const Sample m = sample(sx, sy);
-    const int s = sy * strata_width + sx;
-    out.delta[s] = m.value.delta;
-    out.normalizer[s] = m.value.normalizer;
-    out.weight[s] = m.value.weight;
-    guide_offset[s] = static_cast<float>(m.guide);
-  }
+  SVGF_HD void operator()(int sx, int sy) const { store(sy * strata_width + sx, sample(sx, sy)); }
 
   SVGF_HD Sample sample(int sx, int sy) const {
     const int x0 = sx * kGradientStratum, y0 = sy * kGradientStratum;
     const int xc = min_i(x0 + 1, width - 1), yc = min_i(y0 + 1, height - 1);
-    int guide = (yc - y0) * kGradientStratum + (xc - x0);
     // The first masked pixel in raster order: the nine masks are loaded before any is tested
     // (a partial stratum's missing pixels read the clamped centre's and count as unmasked), so
     // the GPU issues them together instead of one after the other's test; then the sample.
@@ -135,11 +127,21 @@ struct GradientSamplesKernel {
       const int x = x0 + k % kGradientStratum, y = y0 + k / kGradientStratum;
       const bool inside = x < width && y < height;
       const float mask = samples.mask[inside ? y * width + x : yc * width + xc];
-      if (inside && mask > 0.5f) first = k;
+      if (inside && masked(mask)) first = k;
     }
+    return sample_at(first, x0, y0, (yc - y0) * kGradientStratum + (xc - x0));
+  }
+
+  // Whether a pixel holds the stratum's sample (NaN does not).
+  SVGF_HD static bool masked(float mask) { return mask > 0.5f; }
+
+  // The sample of the stratum whose pixels start at (x0, y0) and whose first masked pixel in
+  // raster order is at offset `first` (-1: none; its guides are then read at offset `centre`).
+  SVGF_HD Sample sample_at(int first, int x0, int y0, int centre) const {
     Sample m;
+    m.guide = centre;
     if (first >= 0) {
-      guide = first;
+      m.guide = first;
       const int i = (y0 + first / kGradientStratum) * width + x0 + first % kGradientStratum;
       const float previous = samples.previous[i], current = samples.current[i];
       if (radiance_ok(previous) && radiance_ok(current)) {  // NaN, Inf, negative: no data
@@ -148,8 +150,15 @@ struct GradientSamplesKernel {
         m.value.weight = 1.f;
       }
     }
-    m.guide = guide;
     return m;
+  }
+
+  // Stratum s's outputs.
+  SVGF_HD void store(int s, const Sample& m) const {
+    out.delta[s] = m.value.delta;
+    out.normalizer[s] = m.value.normalizer;
+    out.weight[s] = m.value.weight;
+    guide_offset[s] = static_cast<float>(m.guide);
   }
 
  private:
