@@ -13,7 +13,7 @@
 #include <catch2/catch.hpp>
 
 #include "core/sanitize.h"
-#include "kernels_cpu/cpu_variant.h"
+#include "cpu_variant_support.h"
 #include "kernels_cpu/parallel_for.h"
 #include "test_support.h"
 
@@ -153,18 +153,14 @@ TEST_CASE("cpu rows: sanitize rows equal the per-pixel kernel bitwise, tallies i
         cpu::for_each_pixel(w, h, repairing(repaired, with));
         if (bad == 0.f) REQUIRE(!expected.any());
         if (mask == 7) all += expected;
-        int variants = 0;
-        for (const cpu::CpuVariant* v : cpu::built_variants()) {
-          if (!cpu::runs_here(*v)) continue;
-          require_same_tallies(v->sanitize_rows(scan, w, h), expected,
-                               what + ", scan on " + v->name);
+        test::for_each_runnable_variant([&](const cpu::CpuVariant& v) {
+          require_same_tallies(v.sanitize_rows(scan, w, h), expected,
+                               what + ", scan on " + v.name);
           Image got = in;
-          const Tallies written = v->sanitize_rows(repairing(got, with), w, h);
-          require_same_tallies(written, expected, what + ", repair on " + v->name);
-          test::require_identical(got, repaired, what + ", repair on " + v->name);
-          ++variants;
-        }
-        REQUIRE(variants > 0);
+          const Tallies written = v.sanitize_rows(repairing(got, with), w, h);
+          require_same_tallies(written, expected, what + ", repair on " + v.name);
+          test::require_identical(got, repaired, what + ", repair on " + v.name);
+        });
       }
     }
   for (int b = 0; b < kRepairKinds; ++b) {

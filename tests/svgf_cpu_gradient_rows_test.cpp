@@ -9,7 +9,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "kernels_cpu/cpu_variant.h"
+#include "cpu_variant_support.h"
 #include "kernels_cpu/parallel_for.h"
 #include "methods/svgf/gradient.h"
 #include "test_support.h"
@@ -88,7 +88,6 @@ TEST_CASE("cpu rows: gradient a-trous rows equal the per-stratum kernel bitwise"
   // In pixels: strata images from 45 x 17 down to narrower and lower than the taps' reach.
   const int sizes[][2] = {{133, 49}, {400, 130}, {50, 50}, {7, 40}, {40, 7}, {1, 1}, {20, 14}};
   uint32_t seed = 700;
-  int variants = 0;
   for (const auto& size : sizes) {
     const Guides g(size[0], size[1], ++seed);
     const int sw = g.offset.width(), sh = g.offset.height();
@@ -105,17 +104,13 @@ TEST_CASE("cpu rows: gradient a-trous rows equal the per-stratum kernel bitwise"
           k.phi_normal = phi_normal;
           k.phi_depth = phi_depth;
           cpu::for_each_pixel(sw, sh, k);
-          variants = 0;
-          for (const cpu::CpuVariant* v : cpu::built_variants()) {
-            if (!cpu::runs_here(*v)) continue;
+          test::for_each_runnable_variant([&](const cpu::CpuVariant& v) {
             Image got(sw, sh, 3, -2.f);
             GradientAtrousKernel r = k;
             r.out = GradientPlanes<float>(got.plane(0), got.plane(1), got.plane(2));
-            v->gradient_atrous_rows(r, sw, sh);
-            test::require_identical(got, expected, what + " on " + v->name);
-            ++variants;
-          }
-          REQUIRE(variants > 0);
+            v.gradient_atrous_rows(r, sw, sh);
+            test::require_identical(got, expected, what + " on " + v.name);
+          });
         }
   }
 }
@@ -136,17 +131,13 @@ TEST_CASE("cpu rows: gradient lambda rows equal the per-stratum kernel bitwise",
                                                                    in.plane(2)),
                                    expected.plane(0), sh, radius};
       cpu::for_each_pixel(sw, sh, k);
-      int variants = 0;
-      for (const cpu::CpuVariant* v : cpu::built_variants()) {
-        if (!cpu::runs_here(*v)) continue;
+      test::for_each_runnable_variant([&](const cpu::CpuVariant& v) {
         Image got(sw, sh, 1, -2.f);
         GradientLambdaKernel r = k;
         r.lambda = got.plane(0);
-        v->gradient_lambda_rows(r, sw, sh);
-        test::require_identical(got, expected, what + " on " + v->name);
-        ++variants;
-      }
-      REQUIRE(variants > 0);
+        v.gradient_lambda_rows(r, sw, sh);
+        test::require_identical(got, expected, what + " on " + v.name);
+      });
     }
   }
 }
@@ -180,18 +171,14 @@ TEST_CASE("cpu rows: gradient sample rows equal the per-stratum kernel bitwise",
     k.out = GradientPlanes<float>(expected.plane(0), expected.plane(1), expected.plane(2));
     k.guide_offset = expected.plane(3);
     cpu::for_each_pixel(sw, sh, k);
-    int variants = 0;
-    for (const cpu::CpuVariant* v : cpu::built_variants()) {
-      if (!cpu::runs_here(*v)) continue;
+    test::for_each_runnable_variant([&](const cpu::CpuVariant& v) {
       Image got(sw, sh, 4, -2.f);
       GradientSamplesKernel r = k;
       r.out = GradientPlanes<float>(got.plane(0), got.plane(1), got.plane(2));
       r.guide_offset = got.plane(3);
-      v->gradient_samples_rows(r, sw, sh);
+      v.gradient_samples_rows(r, sw, sh);
       test::require_identical(got, expected, std::to_string(w) + "x" + std::to_string(h) +
-                                                 " pixels on " + v->name);
-      ++variants;
-    }
-    REQUIRE(variants > 0);
+                                                 " pixels on " + v.name);
+    });
   }
 }

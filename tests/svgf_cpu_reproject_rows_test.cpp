@@ -11,7 +11,7 @@
 #include <catch2/catch.hpp>
 
 #include "io/sequence.h"
-#include "kernels_cpu/cpu_variant.h"
+#include "cpu_variant_support.h"
 #include "kernels_cpu/parallel_for.h"
 #include "methods/svgf/reproject.h"
 #include "test_support.h"
@@ -64,19 +64,15 @@ void require_rows_equal_pixels(ReprojectKernel k, const std::string& what) {
   k.moment2 = expected.plane(5);
   k.history = expected.plane(6);
   cpu::for_each_pixel(w, h, k);
-  int variants = 0;
-  for (const cpu::CpuVariant* v : cpu::built_variants()) {
-    if (!cpu::runs_here(*v)) continue;
+  test::for_each_runnable_variant([&](const cpu::CpuVariant& v) {
     Image got(w, h, 7, -2.f);
     k.accumulated = {got.rgb(), got.plane(3)};
     k.moment1 = got.plane(4);
     k.moment2 = got.plane(5);
     k.history = got.plane(6);
-    v->reproject_rows(k, w, h);
-    test::require_identical(got, expected, what + " on " + v->name);
-    ++variants;
-  }
-  REQUIRE(variants > 0);
+    v.reproject_rows(k, w, h);
+    test::require_identical(got, expected, what + " on " + v.name);
+  });
 }
 
 // How the per-pixel kernel reads the pixels' history, by its own tests: through all four
