@@ -22,8 +22,8 @@ using svgf::test::TestDevice;
 
 namespace {
 
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-constexpr float kInf = std::numeric_limits<float>::infinity();
+using svgf::test::kNaN;
+using svgf::test::kInf;
 
 constexpr int kWidth = 128, kHeight = 48;
 // Values are planted in columns [kPatchX0, kPatchX1); a method reaches at most kReach pixels

@@ -22,6 +22,7 @@
 #include "gbuffer/scenes.h"
 #include "io/sequence.h"
 #include "io/sha256.h"
+#include "gbuffer_test_support.h"
 
 namespace fs = std::filesystem;
 using namespace svgf;
@@ -29,10 +30,7 @@ using namespace svgf::gbuffer;
 
 namespace {
 
-const Renderer& renderer() {
-  static const Renderer r;
-  return r;
-}
+using svgf::test::renderer;
 
 // A tiny set: 32x18, 3 frames, 4-spp references (seconds for every test below together).
 EvalParams tiny() {

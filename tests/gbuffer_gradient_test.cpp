@@ -13,16 +13,14 @@
 #include "gbuffer/gradient_samples.h"
 #include "gbuffer/renderer.h"
 #include "gbuffer/scenes.h"
+#include "gbuffer_test_support.h"
 
 using namespace svgf;
 using namespace svgf::gbuffer;
 
 namespace {
 
-const Renderer& renderer() {
-  static const Renderer r;
-  return r;
-}
+using svgf::test::renderer;
 
 Frame render(const std::string& scene, int frame, int w, int h) {
   RenderSettings s;

@@ -23,6 +23,7 @@
 #include "gbuffer/vec_ops.h"
 #include "io/sequence.h"
 #include "io/sha256.h"
+#include "gbuffer_test_support.h"
 
 namespace fs = std::filesystem;
 using namespace svgf;
@@ -30,10 +31,7 @@ using namespace svgf::gbuffer;
 
 namespace {
 
-const Renderer& renderer() {
-  static const Renderer r;
-  return r;
-}
+using svgf::test::renderer;
 
 RenderSettings small(int w, int h) {
   RenderSettings s;

@@ -5,11 +5,11 @@ if(TARGET svgf_cuda)
   # The tests run single kernels through the generic launcher: compiled by nvcc with the
   # backend's exact flags. The main (Catch2's runner and the device query) needs no device
   # code, so the host compiler takes it: through nvcc it was the slowest file of the build.
-  set_source_files_properties(gpu_test.cpp gpu_test_pipeline.cpp gpu_test_device_frames.cpp
-    PROPERTIES LANGUAGE CUDA
+  svgf_cuda_unity(gpu_test_sources svgf_gpu_tests
+    gpu_test.cpp gpu_test_pipeline.cpp gpu_test_device_frames.cpp)
+  set_source_files_properties(${gpu_test_sources} PROPERTIES LANGUAGE CUDA
     COMPILE_OPTIONS "${SVGF_CUDA_EXACT_FLAGS}")
-  add_executable(svgf_gpu_tests gpu_test_main.cpp gpu_test.cpp gpu_test_pipeline.cpp
-    gpu_test_device_frames.cpp)
+  add_executable(svgf_gpu_tests gpu_test_main.cpp ${gpu_test_sources})
   target_link_libraries(svgf_gpu_tests PRIVATE
     Catch2::Catch2 svgf_core svgf_cpu svgf_pipeline svgf_cuda svgf_io svgf_metrics)
   target_include_directories(svgf_gpu_tests PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})

@@ -15,6 +15,8 @@
 #include "io/io_error.h"
 #include "io/staged_folder.h"
 
+#include "file_test_support.h"
+
 namespace fs = std::filesystem;
 using namespace svgf;
 using Catch::Matchers::Contains;
@@ -29,18 +31,9 @@ fs::path fresh(const std::string& name) {
   return p;
 }
 
-void write_text(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
-
-std::string read_text(const fs::path& p) {
-  std::ifstream f(p);
-  return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
-}
-
-std::set<std::string> list_dir(const fs::path& dir) {
-  std::set<std::string> names;
-  for (const auto& e : fs::directory_iterator(dir)) names.insert(e.path().filename().string());
-  return names;
-}
+using svgf::test::list_dir;
+using svgf::test::read_text;
+using svgf::test::write_text;
 
 // A PID no process can have: above the kernel's limit.
 long dead_pid() {

@@ -27,6 +27,8 @@
 #include "io/sequence.h"
 #include "io/sha256.h"
 
+#include "file_test_support.h"
+
 namespace fs = std::filesystem;
 using namespace svgf;
 using Catch::Matchers::Contains;
@@ -51,11 +53,9 @@ struct TempDir {
   std::string operator/(const std::string& name) const { return (path / name).string(); }
 };
 
-std::set<std::string> list_dir(const fs::path& dir) {
-  std::set<std::string> names;
-  for (const auto& e : fs::directory_iterator(dir)) names.insert(e.path().filename().string());
-  return names;
-}
+using svgf::test::list_dir;
+using svgf::test::read_text;
+using svgf::test::write_text;
 
 void fill(Image& im, std::mt19937& rng, float lo, float hi) {
   std::uniform_real_distribution<float> d(lo, hi);
@@ -195,15 +195,6 @@ io::Manifest test_manifest() {
   m.seed = 0xfedcba9876543210ull;  // above 2^63: must survive JSON as unsigned
   m.generator = "svgf io_test";
   return m;
-}
-
-void write_text(const std::string& path, const std::string& text) {
-  std::ofstream(path, std::ios::binary) << text;
-}
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
 }  // namespace

@@ -33,7 +33,7 @@ namespace {
 
 // A bumpy tilted surface: positions on the plane z = 0.05 x + 0.08 y (pixel units scaled by
 // 0.1) with jitter, normals within ~6 degrees of the plane's, noisy color; one background pixel.
-Frame bumpy_frame(int w, int h, uint32_t seed) {
+Frame jbf_bumpy_frame(int w, int h, uint32_t seed) {
   Frame f = test::flat_frame(w, h);
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> u(-1.f, 1.f);
@@ -102,9 +102,9 @@ Image reference_pass(const Frame& f, const Image& in, int radius, int step, bool
   return out;
 }
 
-void pass_against_double(const TestDevice& d) {
+void jbf_pass_against_double(const TestDevice& d) {
   const int w = 23, h = 19;
-  const Frame f = bumpy_frame(w, h, 3);
+  const Frame f = jbf_bumpy_frame(w, h, 3);
   std::vector<std::pair<std::string, JbfParams>> sets;
   auto with = [&](const std::string& name, auto change) {
     JbfParams p;
@@ -159,9 +159,9 @@ std::unique_ptr<Denoiser> jbf_on(const TestDevice& d, Method m, const JbfParams&
   return make_denoiser(c);
 }
 
-void constant_stays_constant(const TestDevice& d) {
+void jbf_constant_stays_constant(const TestDevice& d) {
   for (Method m : {Method::Jbf, Method::JbfAtrous}) {
-    Frame f = bumpy_frame(31, 21, 5);
+    Frame f = jbf_bumpy_frame(31, 21, 5);
     for (float& v : f.color.data()) v = 0.45f;
     JbfParams p;
     p.radius = 5;
@@ -197,7 +197,7 @@ void no_bleeding(const TestDevice& d, const std::function<void(Frame&)>& split) 
   }
 }
 
-void edges_stop_the_filter(const TestDevice& d) {
+void jbf_edges_stop_the_filter(const TestDevice& d) {
   SECTION("normal: 0.6 rad apart, exp(-0.36 / 0.02)") {
     no_bleeding(d, [](Frame& f) {
       for (int y = 0; y < 8; ++y)
@@ -215,8 +215,8 @@ void edges_stop_the_filter(const TestDevice& d) {
   }
 }
 
-void bad_samples_replaced(const TestDevice& d) {
-  Frame f = bumpy_frame(16, 12, 7);
+void jbf_bad_samples_replaced(const TestDevice& d) {
+  Frame f = jbf_bumpy_frame(16, 12, 7);
   f.color.at(3, 4, 0) = std::numeric_limits<float>::quiet_NaN();
   f.color.at(5, 5, 1) = std::numeric_limits<float>::infinity();
   f.color.at(8, 2, 2) = -2.f;
@@ -270,8 +270,8 @@ void atrous_against_full(const TestDevice& d) {
 // homework's formula; every alpha and k moves the result.
 void temporal_known_answer(const TestDevice& d) {
   const int w = 19, h = 13;
-  Frame f0 = bumpy_frame(w, h, 21), f1 = f0;
-  test::fill_uniform(f1.color, 0.f, 1.5f, 99);  // not bumpy_frame's own seed (22)
+  Frame f0 = jbf_bumpy_frame(w, h, 21), f1 = f0;
+  test::fill_uniform(f1.color, 0.f, 1.5f, 99);  // not jbf_bumpy_frame's own seed (22)
   for (const std::pair<float, float>& ak : {std::pair<float, float>{0.2f, 1.f}, {0.5f, 0.3f},
                                             {0.2f, 100.f}}) {
     JbfParams p;
@@ -319,8 +319,8 @@ void temporal_known_answer(const TestDevice& d) {
 // reset(): those pixels take this frame's filtered color.
 void temporal_invalid_history(const TestDevice& d) {
   const int w = 16, h = 10;
-  Frame f0 = bumpy_frame(w, h, 31), f1 = f0;
-  test::fill_uniform(f1.color, 0.f, 1.5f, 98);  // not bumpy_frame's own seed (32)
+  Frame f0 = jbf_bumpy_frame(w, h, 31), f1 = f0;
+  test::fill_uniform(f1.color, 0.f, 1.5f, 98);  // not jbf_bumpy_frame's own seed (32)
   for (int y = 0; y < h; ++y) f1.mesh_id[y * w + 5] = 7;  // a new object in column 5
   for (int y = 0; y < h; ++y) f1.motion.at(w - 1, y, 0) = 4.f;  // the last column came from outside
   JbfParams p;
@@ -349,13 +349,13 @@ void temporal_invalid_history(const TestDevice& d) {
 }  // namespace
 
 SVGF_DEVICE_TEST("jbf: one pass against a double-precision reference, both forms, every sigma",
-                 "[jbf]", pass_against_double)
+                 "[jbf]", jbf_pass_against_double)
 SVGF_DEVICE_TEST("jbf: a constant image stays constant, both forms", "[jbf]",
-                 constant_stays_constant)
+                 jbf_constant_stays_constant)
 SVGF_DEVICE_TEST("jbf: normal and plane edges stop the filter, both forms", "[jbf]",
-                 edges_stop_the_filter)
+                 jbf_edges_stop_the_filter)
 SVGF_DEVICE_TEST("jbf: NaN, Inf and negative color are replaced by 0 and counted", "[jbf]",
-                 bad_samples_replaced)
+                 jbf_bad_samples_replaced)
 SVGF_DEVICE_TEST("jbf: the a-trous form against the full window on a rendered frame", "[jbf]",
                  atrous_against_full)
 SVGF_DEVICE_TEST("jbf: temporal accumulation, the clamped history blended with alpha", "[jbf]",
@@ -364,7 +364,7 @@ SVGF_DEVICE_TEST("jbf: no history across an object change, from outside, or afte
                  "[jbf]", temporal_invalid_history)
 
 TEST_CASE("jbf: same bits on 1 and 2 threads; stages, defaults and errors", "[jbf]") {
-  const Frame f = bumpy_frame(29, 17, 11);
+  const Frame f = jbf_bumpy_frame(29, 17, 11);
   JbfParams small;
   small.radius = 4;
   Image a, b;

@@ -7,6 +7,8 @@
 
 #include "metrics/lighting_change.h"
 
+#include "test_support.h"
+
 using namespace svgf;
 using namespace svgf::metrics;
 
@@ -14,9 +16,7 @@ namespace {
 
 Image gray(int w, int h, float v) { return Image(w, h, 3, v); }
 
-void set(Image& im, int x, int y, float v) {
-  for (int c = 0; c < 3; ++c) im.at(x, y, c) = v;
-}
+using svgf::test::set_gray;
 
 }  // namespace
 
@@ -24,11 +24,11 @@ void set(Image& im, int x, int y, float v) {
 // x = 8..9 in frame 1; pixel 11 is background (mesh 0) and x = 4 a penumbra (0.6) in frame 0.
 TEST_CASE("lighting change: shadow regions, contrast", "[metrics]") {
   std::vector<Image> refs = {gray(12, 1, 1.f), gray(12, 1, 1.f)};
-  set(refs[0], 2, 0, 0.2f);
-  set(refs[0], 3, 0, 0.2f);
-  set(refs[0], 4, 0, 0.6f);
-  set(refs[1], 8, 0, 0.2f);
-  set(refs[1], 9, 0, 0.2f);
+  set_gray(refs[0], 2, 0, 0.2f);
+  set_gray(refs[0], 3, 0, 0.2f);
+  set_gray(refs[0], 4, 0, 0.6f);
+  set_gray(refs[1], 8, 0, 0.2f);
+  set_gray(refs[1], 9, 0, 0.2f);
   std::vector<uint32_t> mesh(12, 1);
   mesh[11] = 0;
   const std::vector<std::vector<uint32_t>> meshes = {mesh, mesh};
@@ -58,8 +58,8 @@ TEST_CASE("lighting change: shadow regions, contrast", "[metrics]") {
   // A denoiser that spread the shadow over its neighbours halves the contrast: shadow 0.6,
   // lit 1.0 -> 0.4 (against the reference's 0.8); one that erased it gives 0.
   Image half = refs[0];
-  set(half, 2, 0, 0.6f);
-  set(half, 3, 0, 0.6f);
+  set_gray(half, 2, 0, 0.6f);
+  set_gray(half, 3, 0, 0.6f);
   REQUIRE(shadow_contrast(half, r0) == Approx(0.4));
   REQUIRE(shadow_contrast(gray(12, 1, 0.7f), r0) == Approx(0.0).margin(1e-12));
 
@@ -72,17 +72,17 @@ TEST_CASE("lighting change: shadow regions, contrast", "[metrics]") {
 
 TEST_CASE("lighting change: changed pixels and error in them", "[metrics]") {
   Image before = gray(4, 1, 1.f), after = gray(4, 1, 1.f);
-  set(after, 0, 0, 0.5f);   // halved: changed
-  set(after, 1, 0, 0.9f);   // 10%: under the 25% rule
-  set(after, 3, 0, 0.1f);   // changed, but another mesh now
+  set_gray(after, 0, 0, 0.5f);   // halved: changed
+  set_gray(after, 1, 0, 0.9f);   // 10%: under the 25% rule
+  set_gray(after, 3, 0, 0.1f);   // changed, but another mesh now
   const std::vector<uint32_t> mb = {1, 1, 1, 1}, ma = {1, 1, 1, 2};
   const PixelMask m = changed_pixels(before, after, mb, ma);
   REQUIRE(m.count == 1);
   REQUIRE(m.inside[0] == 1);
   // relMSE over that pixel alone: (0.6 - 0.5)^2 / (0.25 + 0.01).
   Image out = after;
-  set(out, 0, 0, 0.6f);
-  set(out, 2, 0, 5.f);  // outside the mask: not counted
+  set_gray(out, 0, 0, 0.6f);
+  set_gray(out, 2, 0, 5.f);  // outside the mask: not counted
   REQUIRE(relmse_in(out, after, m) == Approx(0.01 / 0.26).epsilon(1e-6));
   REQUIRE(std::isnan(relmse_in(out, after, PixelMask{std::vector<uint8_t>(4, 0), 0})));
 }

@@ -10,20 +10,20 @@
 #include "metrics/disocclusion.h"
 #include "metrics/outlier_spread.h"
 
+#include "test_support.h"
+
 using namespace svgf;
 using namespace svgf::metrics;
 
 namespace {
 
-void set(Image& im, int x, int y, float v) {
-  for (int c = 0; c < 3; ++c) im.at(x, y, c) = v;
-}
+using svgf::test::set_gray;
 
 // Columns x >= 4 at height[y] (clamped to [0, 1] by the measures), the rest 0.
 Image steps(const std::vector<float>& height) {
   Image im(8, static_cast<int>(height.size()), 3, 0.f);
   for (int y = 0; y < im.height(); ++y)
-    for (int x = 4; x < 8; ++x) set(im, x, y, height[static_cast<size_t>(y)]);
+    for (int x = 4; x < 8; ++x) set_gray(im, x, y, height[static_cast<size_t>(y)]);
   return im;
 }
 
@@ -31,14 +31,14 @@ Image steps(const std::vector<float>& height) {
 Image terraces(const std::vector<float>& level) {
   Image im(12, 3, 3);
   for (int y = 0; y < 3; ++y)
-    for (int x = 0; x < 12; ++x) set(im, x, y, level[static_cast<size_t>(x / 4)]);
+    for (int x = 0; x < 12; ++x) set_gray(im, x, y, level[static_cast<size_t>(x / 4)]);
   return im;
 }
 
 Image checkerboard(int n, float a, float b) {
   Image im(n, n, 3);
   for (int y = 0; y < n; ++y)
-    for (int x = 0; x < n; ++x) set(im, x, y, (x + y) % 2 ? b : a);
+    for (int x = 0; x < n; ++x) set_gray(im, x, y, (x + y) % 2 ? b : a);
   return im;
 }
 
@@ -116,9 +116,9 @@ TEST_CASE("outlier spread: pixels made worse, and how far from the outlier", "[m
   const Image clean(5, 5, 3, 1.1f);  // error 0.01 / 1.01 everywhere
   REQUIRE(pixel_relative_error(clean, ref, 0) == Approx(0.01 / 1.01));
   Image outlier = clean;
-  set(outlier, 2, 2, 5.f);
-  set(outlier, 4, 2, 1.2f);   // 0.04 / 1.01: over twice the clean error
-  set(outlier, 0, 0, 1.12f);  // 0.0144 / 1.01: worse, but under twice
+  set_gray(outlier, 2, 2, 5.f);
+  set_gray(outlier, 4, 2, 1.2f);   // 0.04 / 1.01: over twice the clean error
+  set_gray(outlier, 0, 0, 1.12f);  // 0.0144 / 1.01: worse, but under twice
   const OutlierSpread s = outlier_spread(outlier, clean, ref, 2, 2);
   REQUIRE(s.pixels == 2);
   REQUIRE(s.radius == 2);
@@ -127,7 +127,7 @@ TEST_CASE("outlier spread: pixels made worse, and how far from the outlier", "[m
   REQUIRE(none.radius == -1);
   // Where the clean run is exact, the floor keeps a tiny difference out.
   Image tiny = ref;
-  set(tiny, 1, 1, 1.0001f);
+  set_gray(tiny, 1, 1, 1.0001f);
   REQUIRE(outlier_spread(tiny, ref, ref, 2, 2).pixels == 0);
   REQUIRE_THROWS_AS(outlier_spread(Image(4, 4, 3), clean, ref, 0, 0), std::invalid_argument);
 }

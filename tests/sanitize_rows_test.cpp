@@ -21,8 +21,8 @@ using namespace svgf;
 
 namespace {
 
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-constexpr float kInf = std::numeric_limits<float>::infinity();
+using svgf::test::kNaN;
+using svgf::test::kInf;
 constexpr float kTiny = std::numeric_limits<float>::denorm_min();
 constexpr float kFloatMax = std::numeric_limits<float>::max();
 

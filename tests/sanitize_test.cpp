@@ -17,8 +17,8 @@ using svgf::test::TestDevice;
 
 namespace {
 
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-constexpr float kInf = std::numeric_limits<float>::infinity();
+using svgf::test::kNaN;
+using svgf::test::kInf;
 
 // One frame's inputs as separate images, every pixel a clean surface to start with.
 struct Inputs {

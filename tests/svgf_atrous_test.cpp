@@ -47,9 +47,9 @@ struct AtrousRig {
   }
 };
 
-constexpr float kInf = std::numeric_limits<float>::infinity();
+using svgf::test::kInf;
 
-void constant_stays_constant(const TestDevice& d) {
+void atrous_constant_stays_constant(const TestDevice& d) {
   for (int step : {1, 2, 4, 8, 16}) {
     AtrousRig rig(d, 37, 23);
     for (int c = 0; c < 3; ++c) std::fill_n(rig.in.plane(c), 37 * 23, 1.7f);
@@ -295,7 +295,7 @@ TEST_CASE("atrous: the normal weight is capped at 1 for normals a little longer 
 }  // namespace
 
 SVGF_DEVICE_TEST("atrous: a constant image stays constant at every step",
-                 "[atrous]", constant_stays_constant)
+                 "[atrous]", atrous_constant_stays_constant)
 SVGF_DEVICE_TEST("atrous: known answer for the variance, filtered with squared weights",
                  "[atrous]", variance_with_squared_weights)
 SVGF_DEVICE_TEST("atrous: a flat noisy region keeps its mean", "[atrous]", flat_region_keeps_mean)

@@ -18,8 +18,8 @@ using namespace svgf;
 
 namespace {
 
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-constexpr float kInf = std::numeric_limits<float>::infinity();
+using svgf::test::kNaN;
+using svgf::test::kInf;
 
 // A frame's guides in patches of two meshes (a few strays of a third), holes and a few bad
 // values, and per stratum a random guide pixel inside the frame.

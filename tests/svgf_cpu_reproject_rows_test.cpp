@@ -20,7 +20,7 @@ using namespace svgf;
 
 namespace {
 
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+using svgf::test::kNaN;
 
 // A frame's history as the previous frame left it, and the planes the stage writes.
 struct History {

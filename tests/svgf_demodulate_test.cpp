@@ -18,7 +18,7 @@ using svgf::test::TestDevice;
 
 namespace {
 
-void constant_stays_constant(const TestDevice& d) {
+void demodulate_constant_stays_constant(const TestDevice& d) {
   Image color(19, 7, 3, 0.75f), albedo(19, 7, 3, 0.3f), illum(19, 7, 3, -1.f);
   StageRunner r(d);
   r.run(DemodulateKernel{19, r.rgb(std::as_const(color)), r.rgb(std::as_const(albedo)), {},
@@ -71,7 +71,7 @@ void emission_out_and_back(const TestDevice& d) {
 }  // namespace
 
 SVGF_BACKEND_TEST("demodulate: a constant image stays constant", "[demodulate]",
-                  constant_stays_constant)
+                  demodulate_constant_stays_constant)
 SVGF_BACKEND_TEST("demodulate: zero and NaN albedo are clamped, never divided by",
                   "[demodulate]", albedo_clamped)
 SVGF_BACKEND_TEST("remodulate undoes demodulate to within an ulp", "[demodulate][remodulate]",

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <sstream>
 #include <string>
@@ -16,10 +17,18 @@
 
 namespace svgf::test {
 
+inline constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+inline constexpr float kInf = std::numeric_limits<float>::infinity();
+
 inline void fill_uniform(Image& im, float lo, float hi, uint32_t seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> d(lo, hi);
   for (float& v : im.data()) v = d(rng);
+}
+
+// Every channel of pixel (x, y) of a 3-channel image set to v.
+inline void set_gray(Image& im, int x, int y, float v) {
+  for (int c = 0; c < 3; ++c) im.at(x, y, c) = v;
 }
 
 // A flat, camera-facing wall at depth `depth` with normal +z, mesh 1, albedo `albedo`.

@@ -29,7 +29,7 @@ namespace {
 
 // A tilted, bumpy surface: depth 2 + 0.05 x + 0.08 y, normals within ~6 degrees of +z (some a
 // little longer than 1, as half floats leave them), one background pixel.
-Frame bumpy_frame(int w, int h, uint32_t seed) {
+Frame wavelet_bumpy_frame(int w, int h, uint32_t seed) {
   Frame f = test::flat_frame(w, h);
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> u(-1.f, 1.f);
@@ -90,9 +90,9 @@ Image reference_pass(const Frame& f, const Image& in, const Image& luma, const I
   return out;
 }
 
-void pass_against_double(const TestDevice& d) {
+void wavelet_pass_against_double(const TestDevice& d) {
   const int w = 29, h = 23;
-  const Frame f = bumpy_frame(w, h, 3);
+  const Frame f = wavelet_bumpy_frame(w, h, 3);
   Image in(w, h, 3), luma(w, h, 1), dev(w, h, 1), out(w, h, 3);
   test::fill_uniform(in, 0.2f, 2.f, 5);
   for (int i = 0; i < w * h; ++i)
@@ -195,9 +195,9 @@ std::unique_ptr<Denoiser> wavelet_on(const TestDevice& d, const WaveletParams& p
   return make_denoiser(c);
 }
 
-void constant_stays_constant(const TestDevice& d) {
+void wavelet_constant_stays_constant(const TestDevice& d) {
   for (int k : {3, 5, 7, 9}) {
-    Frame f = bumpy_frame(37, 23, 13);
+    Frame f = wavelet_bumpy_frame(37, 23, 13);
     for (float& v : f.color.data()) v = 0.7f;
     for (float& v : f.albedo.data()) v = 0.4f;
     WaveletParams p;
@@ -227,7 +227,7 @@ void no_bleeding(const TestDevice& d, const std::function<void(Frame&)>& split, 
   }
 }
 
-void edges_stop_the_filter(const TestDevice& d) {
+void wavelet_edges_stop_the_filter(const TestDevice& d) {
   SECTION("depth: a 30-unit step, W_Z = exp(-30/1.01)") {
     no_bleeding(d, [](Frame& f) {
       for (int y = 0; y < 8; ++y)
@@ -248,8 +248,8 @@ void edges_stop_the_filter(const TestDevice& d) {
   }
 }
 
-void bad_samples_replaced(const TestDevice& d) {
-  Frame f = bumpy_frame(16, 12, 17);
+void wavelet_bad_samples_replaced(const TestDevice& d) {
+  Frame f = wavelet_bumpy_frame(16, 12, 17);
   for (float& v : f.color.data()) v = 0.5f;
   f.color.at(3, 4, 0) = std::numeric_limits<float>::quiet_NaN();
   f.color.at(5, 5, 1) = std::numeric_limits<float>::infinity();
@@ -269,15 +269,15 @@ void bad_samples_replaced(const TestDevice& d) {
 }  // namespace
 
 SVGF_DEVICE_TEST("wavelet: one pass against a double-precision reference, every parameter",
-                 "[wavelet]", pass_against_double)
+                 "[wavelet]", wavelet_pass_against_double)
 SVGF_BACKEND_TEST("wavelet: Dev is the clamped 3x3 Gaussian of the 3x3 luma deviation",
                   "[wavelet]", deviation_against_double)
 SVGF_DEVICE_TEST("wavelet: a constant image stays constant, every kernel size", "[wavelet]",
-                 constant_stays_constant)
+                 wavelet_constant_stays_constant)
 SVGF_DEVICE_TEST("wavelet: depth, normal and luma edges stop the filter", "[wavelet]",
-                 edges_stop_the_filter)
+                 wavelet_edges_stop_the_filter)
 SVGF_DEVICE_TEST("wavelet: NaN, Inf and negative color are replaced by 0 and counted",
-                 "[wavelet]", bad_samples_replaced)
+                 "[wavelet]", wavelet_bad_samples_replaced)
 
 TEST_CASE("wavelet: binomial weights are rows of Pascal's triangle and sum to 1", "[wavelet]") {
   for (int k : {3, 5, 7, 9}) {
@@ -293,7 +293,7 @@ TEST_CASE("wavelet: binomial weights are rows of Pascal's triangle and sum to 1"
 
 TEST_CASE("wavelet: same bits on 1 and 2 threads; stages, buffers, defaults and errors",
           "[wavelet]") {
-  const Frame f = bumpy_frame(41, 27, 19);
+  const Frame f = wavelet_bumpy_frame(41, 27, 19);
   Frame noisy = f;
   test::fill_uniform(noisy.color, 0.f, 3.f, 23);
   Image a, b;
