@@ -354,9 +354,9 @@ StageCost fused_reprojection_cost(const SvgfParams& p, const FrameTraits& f, boo
   c.written = (3 + 4 + 2 + 1 + 4) * kFloat;  // + packed guides (depth, normal)
   c.ops = kDemodulate + (f.emission ? kEmission : 0) + (surface ? kReproject : kReprojectNoHistory);
   c.planes =
-      "R color 3, albedo 3, emission 3 (if any), guides 9, previous guides 5, history 6 "
-      "(background: depth, normal); W illumination 3, accumulated 4, moments 2, length 1, "
-      "packed guides 4";
+      "R color 3, albedo 3, emission 3 (if any), guides 9, previous guides 5 (packed depth + "
+      "normal 4, mesh id), history 6 (background: depth, normal); W illumination 3, "
+      "accumulated 4, moments 2, length 1, packed guides 4";
   if (sanitize) {
     c.ops += sanitize_cost(f.emission).ops;
     c.planes += "; the sanitize stage's tests (background: + depth dx/dy, motion 2)";

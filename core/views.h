@@ -121,14 +121,17 @@ struct GuideView {
   SVGF_HD DepthNormal depth_normal(int i) const { return DepthNormal{depth[i], normal.load(i)}; }
 };
 
-// The guides the filters read, with depth and normal packed as one Packed4 per pixel (fast
-// mode's storage; the same members as GuideView where the filters use them).
+// The guides the filters read, with depth and normal packed as one Packed4 per pixel (the
+// packed flavors' storage; the same members as GuideView where the filters use them). The
+// previous frame's, as SVGF's reprojection reads them there, carry the mesh ids and no depth
+// gradient.
 struct PackedGuides {
   int width = 0;
   int height = 0;
   const Packed4* depth_normal_data = nullptr;  // depth, normal x, y, z
   const float* depth_dx = nullptr;
   const float* depth_dy = nullptr;
+  const uint32_t* mesh_id = nullptr;
 
   SVGF_HD int index(int x, int y) const { return y * width + x; }
   SVGF_HD bool inside(int x, int y) const { return x >= 0 && y >= 0 && x < width && y < height; }

@@ -14,17 +14,21 @@
 //   float* plane(buffer, c); RgbView rgb(buffer, first); Image read(buffer)
 //                                          its planes as views; a host copy
 //   bool resize(w, h)                      frame size (true when buffers must be reallocated)
-//   FrameInputs inputs(frame, position, split, gradient_into, defer_sanitize)  this frame's
-//                                          inputs, sanitized unless the method may run that
-//                                          stage itself and the backend lets it; on the
-//                                          backend's side (world positions, direct and
+//   FrameInputs inputs(frame, position, split, gradient_into, defer_sanitize, normals_into)
+//                                          this frame's inputs, sanitized unless the method
+//                                          may run that stage itself and the backend lets it;
+//                                          on the backend's side (world positions, direct and
 //                                          indirect, and the gradient samples only when asked
 //                                          for; split: the frame carries both; gradient_into:
 //                                          3 planes the method lends for the gradient samples,
-//                                          where a backend that copies them puts them)
+//                                          where a backend that copies them puts them;
+//                                          normals_into: likewise for the normals, after
+//                                          keep_previous_mesh_ids_only)
 //   GuideView previous_guides()            the frame before's depth, normal and mesh id (valid
 //                                          after one frame; its depth gradient and motion are
 //                                          not kept: null)
+//   keep_previous_mesh_ids_only()          the method keeps the frame before's depth and
+//                                          normal itself: previous_guides() has its mesh ids
 //   RgbView output(out)                    where the frame's output goes
 //   set_output_over_color()                the method reads the input color only before it
 //                                          writes the output: the output may take its planes
@@ -98,10 +102,15 @@ class CpuBackend {
   // the sanitize stage itself (FrameInputs::sanitize_pending); reading the frame in place, this
   // backend runs it here, unless it copies the inputs (copies_inputs_, the tests' stand-in for
   // the CUDA backend's planes).
+  // `normals_into`: where the method keeps the previous guides itself, 3 planes it lends for
+  // the frame's normals, where a backend that copies them puts them (the copying stand-in
+  // below, which holds the method to the lending as the CUDA backend does).
   FrameInputs inputs(const Frame& f, bool position = false, bool split = false,
-                     float* gradient_into = nullptr, bool defer_sanitize = false) {
+                     float* gradient_into = nullptr, bool defer_sanitize = false,
+                     float* normals_into = nullptr) {
     FrameInputs in;
     lent_color_ = {};
+    lent_normals_ = normals_into;
     if (defer_sanitize && copies_inputs_) {
       in = copied_inputs(f, position, split);
       in.sanitize_pending = true;
@@ -131,18 +140,21 @@ class CpuBackend {
   // method that asks for them pays for the copy (the first call allocates it; the first frame
   // has no history, so its planes are not read).
   GuideView previous_guides() {
-    if (prev_planes_.width() != width_ || prev_planes_.height() != height_) {
+    const size_t n = static_cast<size_t>(width_) * height_;
+    if (prev_mesh_id_.size() != n) prev_mesh_id_.assign(n, 0u);
+    if (!mesh_ids_only_ && (prev_planes_.width() != width_ || prev_planes_.height() != height_))
       prev_planes_ = Image(width_, height_, 4);
-      prev_mesh_id_.assign(static_cast<size_t>(width_) * height_, 0u);
-    }
     GuideView g;
     g.width = width_;
     g.height = height_;
-    g.depth = prev_planes_.plane(0);
-    g.normal = prev_planes_.rgb(1);
+    if (!mesh_ids_only_) {
+      g.depth = prev_planes_.plane(0);
+      g.normal = prev_planes_.rgb(1);
+    }
     g.mesh_id = prev_mesh_id_.data();
     return g;
   }
+  void keep_previous_mesh_ids_only() { mesh_ids_only_ = true; }
 
   // The CUDA backend lends the output the input color's planes where the method asks
   // (kernels_cuda/cuda_backend.h). This one reads the frame in place and writes the output
@@ -161,7 +173,9 @@ class CpuBackend {
       std::copy(lent_color_.g, lent_color_.g + n, out.plane(1));
       std::copy(lent_color_.b, lent_color_.b + n, out.plane(2));
     }
-    if (prev_planes_.empty()) return;  // no method here reads the previous guides
+    if (prev_mesh_id_.empty()) return;  // no method here reads the previous guides
+    prev_mesh_id_ = f.mesh_id;
+    if (mesh_ids_only_) return;
     const size_t n = f.color.pixel_count();
     const GuideView& g = current_guides_;  // sanitized
     auto copy = [&](const float* src, int plane) {
@@ -171,7 +185,6 @@ class CpuBackend {
     copy(g.normal.r, 1);
     copy(g.normal.g, 2);
     copy(g.normal.b, 3);
-    prev_mesh_id_ = f.mesh_id;
   }
 
  private:
@@ -223,10 +236,15 @@ class CpuBackend {
     auto copy = [&](const float* src, int plane) {
       std::copy(src, src + n, repaired_.plane(plane));
     };
+    // The normals go to the planes the method lent, where it did.
+    const RgbView normal = lent_normals_ ? RgbView{lent_normals_, lent_normals_ + n,
+                                                   lent_normals_ + 2 * n}
+                                         : repaired_.rgb(kNormal);
+    float* const normal_planes[3] = {normal.r, normal.g, normal.b};
     for (int c = 0; c < 3; ++c) {
       copy(f.color.plane(c), kColor + c);
       copy(f.albedo.plane(c), kAlbedo + c);
-      copy(f.normal.plane(c), kNormal + c);
+      std::copy(f.normal.plane(c), f.normal.plane(c) + n, normal_planes[c]);
       if (!f.emission.empty()) copy(f.emission.plane(c), kEmission + c);
       if (position) copy(f.position.plane(c), kPosition + c);
       if (split) {
@@ -243,7 +261,7 @@ class CpuBackend {
     InputPlanesOut out;
     out.color = repaired_.rgb(kColor);
     out.albedo = repaired_.rgb(kAlbedo);
-    out.normal = repaired_.rgb(kNormal);
+    out.normal = normal;
     if (!f.emission.empty()) out.emission = repaired_.rgb(kEmission);
     if (position) out.position = repaired_.rgb(kPosition);
     if (split) {
@@ -296,7 +314,9 @@ class CpuBackend {
   GuideView current_guides_;
   std::vector<uint32_t> prev_mesh_id_;
   bool output_over_color_ = false;  // set_output_over_color
+  bool mesh_ids_only_ = false;      // keep_previous_mesh_ids_only
   RgbView lent_color_;              // this frame's output, where it is the copied color
+  float* lent_normals_ = nullptr;   // inputs()' normals_into
 
  protected:
   // Copy every frame's inputs and leave the sanitize stage to a method that asks to run it

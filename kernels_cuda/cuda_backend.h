@@ -64,7 +64,10 @@ class CudaBackend {
     width_ = w;
     height_ = h;
     try {
-      for (int s = 0; s < 2; ++s) allocate(guides_[s], kKeptPlanes, "frame guides");
+      for (int s = 0; s < 2; ++s)
+        allocate(guides_[s], mesh_ids_only_ ? 1 : kKeptPlanes,
+                 mesh_ids_only_ ? "frame mesh ids" : "frame guides");
+      if (mesh_ids_only_) allocate(depth_, 1, "frame depth");
       allocate(shading_, kShadingPlanes, "frame inputs");
       if (!output_over_color_) allocate(output_, 3, "output");
       staging_in_.resize(kInputPlanes * pixels(), "the pinned input staging buffer");
@@ -77,6 +80,7 @@ class CudaBackend {
   }
   void release() {
     for (int s = 0; s < 2; ++s) guides_[s].resize(0);
+    depth_.resize(0);
     shading_.resize(0);
     output_.resize(0);
     position_.resize(0);
@@ -95,13 +99,21 @@ class CudaBackend {
   // the color's planes and the backend keeps none of its own: 3 planes fewer (issue 14 item
   // 5). Set before the first frame (the denoiser's constructor).
   void set_output_over_color() { output_over_color_ = true; }
+  // The method keeps the previous frame's depth and normal itself (SVGF's packed flavors: the
+  // packed guides a frame writes are the next one's previous guides, methods/svgf/denoiser.h),
+  // so the backend keeps the previous frame's mesh ids only: previous_guides() has no depth or
+  // normal, a frame's depth has a plane of its own and its normals land in the 3 planes the
+  // method lends (inputs()' normals_into). 7 planes fewer here (issue 14 item 5). Set before
+  // the first frame (the denoiser's constructor).
+  void keep_previous_mesh_ids_only() { mesh_ids_only_ = true; }
 
   // `what` and what the whole frame size needs name the buffer in an out-of-memory error.
   // Zero-filled, as the CPU's: a buffer a method fills only in part (BMFR's per-block data)
   // reads back defined.
   void allocate(Buffer& b, int channels, const char* what) {
-    const size_t planes = static_cast<size_t>(2 * kKeptPlanes + kShadingPlanes +
-                                              (output_over_color_ ? 0 : 3) + method_planes_);
+    const size_t planes = static_cast<size_t>((mesh_ids_only_ ? 2 + 1 : 2 * kKeptPlanes) +
+                                              kShadingPlanes + (output_over_color_ ? 0 : 3) +
+                                              method_planes_);
     const size_t mib = (planes * pixels() * sizeof(float) + (1u << 20) - 1) >> 20;
     const std::string named = std::string(what) + " (" + std::to_string(width_) + "x" +
                               std::to_string(height_) + " frames need about " +
@@ -144,9 +156,13 @@ class CudaBackend {
   // direct and indirect (the frame carries both), likewise in a buffer of their own.
   // `gradient_into`: the method reads A-SVGF's gradient samples, uploaded (when the frame has
   // them) into the 3 planes it lends there (memory it does not use until its gradient stage
-  // has read them: no planes of the backend's own); null: not wanted.
+  // has read them: no planes of the backend's own); null: not wanted. `normals_into`: the 3
+  // planes the frame's normals go to where the method keeps the previous guides itself
+  // (keep_previous_mesh_ids_only; required there, null otherwise).
   FrameInputs inputs(const Frame& in, bool position = false, bool split = false,
-                     float* gradient_into = nullptr, bool defer_sanitize = false) {
+                     float* gradient_into = nullptr, bool defer_sanitize = false,
+                     float* normals_into = nullptr) {
+    lend_normals(normals_into);
     const size_t n = pixels();
     float* staging = staging_in_.get();
     auto stage = [&](const float* src, int plane) {
@@ -185,10 +201,17 @@ class CudaBackend {
     }
     host_copies_.run();
     engine_.mark(kUploadStage);
-    // The guides the next frame reads go to this frame's slot, the rest to the one shading
-    // buffer, the gradient samples to the planes the method lent (transfers from one staging
-    // buffer).
-    guides_[slot_].upload_async(staging, kKeptPlanes * n, engine_.stream());
+    // The guides the next frame reads go to this frame's slot (the mesh ids alone, and the
+    // depth and normals to their planes, where the method keeps the rest), the rest to the one
+    // shading buffer, the gradient samples to the planes the method lent (transfers from one
+    // staging buffer).
+    if (mesh_ids_only_) {
+      upload(input_plane(kDepth), staging + kDepth * n, n, "upload of the depth");
+      upload(input_plane(kNormal), staging + kNormal * n, 3 * n, "upload of the normals");
+      upload(input_plane(kMeshId), staging + kMeshId * n, n, "upload of the mesh ids");
+    } else {
+      guides_[slot_].upload_async(staging, kKeptPlanes * n, engine_.stream());
+    }
     shading_.upload_async(staging + kKeptPlanes * n, (planes - kKeptPlanes) * n,
                           engine_.stream());
     if (gradient)
@@ -206,7 +229,9 @@ class CudaBackend {
   // upload's, in one launch on the caller's stream (timed as copy_in); the caller's buffers
   // are only read.
   FrameInputs inputs(const DeviceFrame& in, bool position = false, bool split = false,
-                     float* gradient_into = nullptr, bool defer_sanitize = false) {
+                     float* gradient_into = nullptr, bool defer_sanitize = false,
+                     float* normals_into = nullptr) {
+    lend_normals(normals_into);
     if (position) ensure_position();
     if (split) ensure_split();
     StridedCopy copy;
@@ -241,14 +266,18 @@ class CudaBackend {
   }
 
   // The previous frame's depth, normal and mesh id: what the methods read of it (SVGF's
-  // reprojection, the JBF's temporal pass). Its depth gradient and motion are not kept (null).
+  // reprojection, the JBF's temporal pass). Its depth gradient and motion are not kept (null),
+  // nor its depth and normal where the method keeps them (keep_previous_mesh_ids_only).
   GuideView previous_guides() const {
     GuideView g;
     g.width = width_;
     g.height = height_;
-    g.depth = plane(guides_[1 - slot_], kDepth);
-    g.normal = rgb(guides_[1 - slot_], kNormal);
-    g.mesh_id = reinterpret_cast<const uint32_t*>(plane(guides_[1 - slot_], kMeshId));
+    const Buffer& prev = guides_[1 - slot_];
+    if (!mesh_ids_only_) {
+      g.depth = plane(prev, kDepth);
+      g.normal = rgb(prev, kNormal);
+    }
+    g.mesh_id = reinterpret_cast<const uint32_t*>(plane(prev, mesh_ids_only_ ? 0 : kMeshId));
     return g;
   }
   RgbView output(Image&) { return output_view(); }
@@ -279,6 +308,21 @@ class CudaBackend {
   }
 
  private:
+  // Where this frame's normals go (keep_previous_mesh_ids_only).
+  void lend_normals(float* planes) {
+    if (mesh_ids_only_ != (planes != nullptr))
+      throw std::logic_error(mesh_ids_only_
+                                 ? "cuda backend: the method keeps the previous guides, so it "
+                                   "must lend the planes for the frame's normals"
+                                 : "cuda backend: normals lent to a backend that keeps them");
+    lent_normals_ = planes;
+  }
+  void upload(float* device, const float* host, size_t floats, const char* what) {
+    SVGF_CUDA_CHECK(cudaMemcpyAsync(device, host, floats * sizeof(float), cudaMemcpyHostToDevice,
+                                    engine_.stream()),
+                    what);
+  }
+
   // The buffers of the optional inputs, made on the first frame that asks for them.
   void ensure_position() {
     if (position_.size() != 3 * pixels()) allocate(position_, 3, "world positions");
@@ -431,7 +475,11 @@ class CudaBackend {
   RgbView output_view() const { return {output_plane(0), output_plane(1), output_plane(2)}; }
   // An input plane of this frame, in whichever buffer holds it.
   float* input_plane(int p) const {
-    return p < kKeptPlanes ? plane(guides_[slot_], p) : plane(shading_, p - kKeptPlanes);
+    if (p >= kKeptPlanes) return plane(shading_, p - kKeptPlanes);
+    if (!mesh_ids_only_) return plane(guides_[slot_], p);
+    if (p == kMeshId) return plane(guides_[slot_], 0);
+    if (p == kDepth) return plane(depth_, 0);
+    return lent_normals_ + static_cast<size_t>(p - kNormal) * pixels();
   }
   RgbView input_rgb(int p) const { return {input_plane(p), input_plane(p + 1), input_plane(p + 2)}; }
 
@@ -442,11 +490,14 @@ class CudaBackend {
   int slot_ = 0;  // input slot the next frame is uploaded into
   int method_planes_ = 0;
   bool output_over_color_ = false;  // set_output_over_color
+  bool mesh_ids_only_ = false;      // keep_previous_mesh_ids_only
+  float* lent_normals_ = nullptr;   // this frame's normals there (inputs()' normals_into)
   // The depth, normal and mesh id of this frame and the previous one (the methods read those
   // of the previous frame through previous_guides(), nothing else of it), and this frame's
   // other inputs once but for the gradient samples (in the method's lent planes): 2 x 5 + 13
   // planes instead of 2 x 21 (docs/benchmarks.md, "Where the 618 MiB go").
-  Buffer guides_[2], shading_, output_, position_, split_;
+  // (keep_previous_mesh_ids_only: the slots hold the mesh ids, depth_ the frame's depth.)
+  Buffer guides_[2], depth_, shading_, output_, position_, split_;
   PinnedBuffer<float> staging_in_, staging_out_, staging_position_, staging_split_;
   HostStaging host_copies_;
 };

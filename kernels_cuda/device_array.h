@@ -54,6 +54,7 @@ class DeviceArray {
   std::vector<T> to_host() const { std::vector<T> v(size_); download(v.data(), size_); return v; }
   T* get() const { return ptr_; }
   size_t size() const { return size_; }
+  bool empty() const { return size_ == 0; }
 
  private:
   void release() {

@@ -393,7 +393,7 @@ class MirrorEngine {
 // (the packed guides too, for the packed flavor: CUDA's exact mode).
 class ArenaPipeline {
  public:
-  ArenaPipeline(int w, int h) : arena_(w, h, 59) {  // 58 planes and the packed regions' pads
+  ArenaPipeline(int w, int h) : arena_(w, h, 63) {  // 62 planes and the packed regions' pads
     color_ = arena_.rgb("color");
     albedo_ = arena_.rgb("albedo");
     for (int s = 0; s < 2; ++s) guides_[s] = arena_.guides("guides slot " + std::to_string(s));
@@ -407,7 +407,9 @@ class ArenaPipeline {
     accumulated_ = arena_.illum_var("accumulated");
     signal_[0] = arena_.planes("a-trous signal 0", 4, false, true);
     signal_[1] = arena_.planes("a-trous signal 1", 4, false, true);
-    packed_guides_ = arena_.planes("packed guides", 4, false, true);
+    // Two slots: the packed flavors' reprojection reads the previous frame's.
+    for (int s = 0; s < 2; ++s)
+      packed_guides_[s] = arena_.planes("packed guides slot " + std::to_string(s), 4, false, true);
     output_ = arena_.rgb("output");
   }
 
@@ -447,7 +449,8 @@ class ArenaPipeline {
     b.accumulated = accumulated_;
     b.signal[0] = signal_[0];
     b.signal[1] = signal_[1];
-    b.packed_guides = packed_guides_;
+    b.packed_guides = packed_guides_[input_];
+    b.prev_packed_guides = packed_guides_[1 - input_];
     b.output = output_;
     MirrorEngine engine(arena_, where);
     run_svgf_frame<Flavor>(engine, b, p, has_history_);
@@ -464,7 +467,7 @@ class ArenaPipeline {
   float* history_[2] = {};
   IllumVarView accumulated_;
   float* signal_[2] = {};
-  float* packed_guides_ = nullptr;
+  float* packed_guides_[2] = {};
   int slot_ = 0, input_ = 0;
   bool has_history_ = false;
 };

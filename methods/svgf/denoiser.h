@@ -26,10 +26,11 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
       : params_(params), mode_(config.mode), keep_scratch_(config.keep_scratch),
         backend_(config) {
     params_.validate();
+    if constexpr (kGuideHistory) backend_.keep_previous_mesh_ids_only();
     backend_.set_method_planes(
         3 * color_history_slots() + 2 * (2 + 1 + 4) +
         (keep_scratch_ ? 3 + (accumulates_color() ? 4 : 1) : 0) +
-        (packs_guides() ? 4 : 0) +
+        (packs_guides() ? 4 * packed_guide_slots() : 0) + (kGuideHistory && keep_scratch_ ? 3 : 0) +
         (gradient_mode() && (keep_scratch_ || params_.split != SplitMode::Off) ? 1 : 0) +
         (params_.taa ? 3 * 3 : 0));
     // The frame reads the input color in the demodulation and the reprojection only, both done
@@ -95,8 +96,8 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
     // A backend that sanitizes in its own planes leaves that stage to the frame, which fuses
     // it into its first kernel where it can (run_svgf_frame).
     float* gradient_into = gradient_mode() ? illumination_planes().r : nullptr;
-    const FrameInputs cur =
-        backend_.inputs(in, /*position=*/false, split, gradient_into, /*defer_sanitize=*/true);
+    const FrameInputs cur = backend_.inputs(in, /*position=*/false, split, gradient_into,
+                                            /*defer_sanitize=*/true, normals_planes());
 
     SvgfFrameBuffers b = signal_buffers(cur, 0, backend_.output(out));
     b.sanitize_pending = cur.sanitize_pending;
@@ -123,8 +124,14 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
       indirect.color = cur.indirect;
       indirect.emission = {};  // the emission is part of direct
     }
-    if (packs_guides())
-      b.packed_guides = indirect.packed_guides = backend_.plane(packed_guides_, 0);
+    if (packs_guides()) {
+      // Written this frame (the next one's previous guides where they have two slots).
+      const int next = packed_guide_slots() == 2 ? 1 - slot_ : 0;
+      b.packed_guides = indirect.packed_guides = backend_.plane(packed_guides_[next], 0);
+      if (kGuideHistory)
+        b.prev_packed_guides = indirect.prev_packed_guides =
+            backend_.plane(packed_guides_[slot_], 0);
+    }
 #if defined(__CUDACC__)
     if (mode_ == Mode::Fast) {
       run<SvgfFast>(engine, split, b, indirect);
@@ -163,6 +170,27 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
   // The flavor run filters against packed guides: fast mode, and exact mode on a backend with
   // packed storage (methods/svgf/flavors.h).
   bool packs_guides() const { return mode_ == Mode::Fast || Backend::kPackedStorage; }
+
+  // The previous frame's depth and normal, on a backend with packed storage (the packed
+  // flavors; issue 14 item 5): the packed guides that frame wrote, kept in two slots (the
+  // reprojection's taps read depth + normal as one 16-byte load), and the backend keeps only
+  // its mesh ids (keep_previous_mesh_ids_only: 7 planes fewer there, 4 more here). The frame's
+  // own normals are then read by the stages up to its first pixel kernel only (the sanitize
+  // rule, A-SVGF's stages, the packing and the reprojection of the pixel's own), so they are
+  // uploaded into a-trous buffer 1 (normals_planes), which that kernel writes the accumulation
+  // into pixel by pixel, after the pixel's own normal is read and packed (run_svgf_signal,
+  // methods/svgf/pipeline.h): 3 planes fewer in all. A split frame's second signal reads them
+  // after the first one's accumulation, and the debug buffers' layout (keep_scratch) is the
+  // one the sharing is tested against: planes of their own there.
+  static constexpr bool kGuideHistory = Backend::kPackedStorage;
+  int packed_guide_slots() const { return kGuideHistory ? 2 : 1; }
+  float* normals_planes() {
+    if constexpr (kGuideHistory) {
+      return normals_.empty() ? backend_.plane(signal_[1], 0) : backend_.plane(normals_, 0);
+    } else {
+      return nullptr;
+    }
+  }
 
   // A frame has gradient samples when it carries the group and at least one stratum holds one
   // (the first frame and the frame after a cut have none); else the statistics anti-lag runs.
@@ -294,7 +322,11 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
         backend_.allocate(illumination_, 3, "illumination");
         backend_.allocate(accumulated_, accumulates_color() ? 4 : 1, "accumulation");
       }
-      if (packs_guides()) backend_.allocate(packed_guides_, 4, "packed guides");
+      if (packs_guides())
+        for (int s = 0; s < packed_guide_slots(); ++s)
+          backend_.allocate(packed_guides_[s], 4, "packed guides");
+      normals_ = {};  // a split frame's, at the size before
+      if (kGuideHistory && keep_scratch_) backend_.allocate(normals_, 3, "frame normals");
       if (params_.taa) {
         backend_.allocate(remodulated_, 3, "remodulated color");
         for (auto& t : taa_history_) backend_.allocate(t, 3, "TAA history");
@@ -323,6 +355,7 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
         backend_.allocate(history_[1][s], 1, "indirect history length");
       }
       backend_.allocate(indirect_output_, 3, "indirect output");
+      if (kGuideHistory && normals_.empty()) backend_.allocate(normals_, 3, "frame normals");
       if (strata_shared_) {
         backend_.allocate(strata_, stratum_buffer_planes(), "gradient strata");
         strata_shared_ = false;
@@ -350,7 +383,9 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
     split_allocated_ = false;
     illumination_ = {};
     accumulated_ = {};
-    packed_guides_ = {};
+    packed_guides_[0] = {};
+    packed_guides_[1] = {};
+    normals_ = {};
     strata_ = {};
     strata_shared_ = false;
     backend_.release();
@@ -368,7 +403,8 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
   bool split_allocated_ = false;  // the indirect history exists at this size
   // History per signal ([0]: color or direct, [1]: indirect) and slot.
   typename Backend::Buffer color_history_[2][2], moments_[2][2], history_[2][2];
-  typename Backend::Buffer illumination_, accumulated_, signal_[2], packed_guides_, strata_;
+  typename Backend::Buffer illumination_, accumulated_, signal_[2], packed_guides_[2], strata_;
+  typename Backend::Buffer normals_;  // the frame's normals where a-trous buffer 1 cannot take them
   typename Backend::Buffer indirect_output_;
   typename Backend::Buffer remodulated_, taa_history_[2];  // only with TAA
   LastReport report_;

@@ -32,6 +32,9 @@ struct SvgfFrameBuffers {
   // Inputs of this frame.
   GuideView guides;
   GuideView prev_guides;  // the previous frame's depth, normal and mesh id (no more is kept)
+  // The packed flavors: the previous frame's packed_guides (its depth and normal; prev_guides
+  // then holds its mesh ids, and depth and normal only where a backend keeps them too).
+  const float* prev_packed_guides = nullptr;
   // The depth this frame's points had in the previous camera (the reprojection's depth test).
   PreviousViewDepth previous_depth;
   ConstRgbView color;
@@ -124,6 +127,22 @@ auto filter_guides(Flavor, const SvgfFrameBuffers& b) {
     return g;
   } else {
     return b.guides;
+  }
+}
+
+// The previous frame's guides as the flavor's reprojection reads them: planes, or (packed
+// flavors) the packed guides that frame wrote, with its mesh ids.
+template <class Flavor>
+auto reprojected_guides(Flavor, const SvgfFrameBuffers& b) {
+  if constexpr (kPacksGuides<Flavor>) {
+    PackedGuides g;
+    g.width = b.prev_guides.width;
+    g.height = b.prev_guides.height;
+    g.depth_normal_data = reinterpret_cast<const Packed4*>(b.prev_packed_guides);
+    g.mesh_id = b.prev_guides.mesh_id;
+    return g;
+  } else {
+    return b.prev_guides;
   }
 }
 
@@ -226,12 +245,14 @@ void run_gradient_stages(Engine& engine, const SvgfFrameBuffers& b, const SvgfPa
 }
 
 // `gradient_lambda`: A-SVGF's lambda per stratum when the gradient stages ran this frame.
-inline ReprojectKernel reproject_kernel_for(const SvgfFrameBuffers& b, const SvgfParams& p,
-                                            bool has_history,
-                                            const float* gradient_lambda = nullptr) {
-  ReprojectKernel k;
+// The previous frame's guides as Flavor stores them (reprojected_guides).
+template <class Flavor = SvgfExact>
+auto reproject_kernel_for(const SvgfFrameBuffers& b, const SvgfParams& p, bool has_history,
+                          const float* gradient_lambda = nullptr) {
+  const auto prev_guides = reprojected_guides(Flavor(), b);
+  ReprojectKernelT<std::decay_t<decltype(prev_guides)>> k;
   k.guides = b.guides;
-  k.prev_guides = b.prev_guides;
+  k.prev_guides = prev_guides;
   k.previous_depth = b.previous_depth;
   k.illumination = b.illumination;
   k.color = b.color;
@@ -299,13 +320,16 @@ void run_svgf_signal(Engine& engine, const SvgfFrameBuffers& buffers, const Svgf
   // 1. (color - emission) / albedo -> illumination (the inputs are sanitized already).
   // 2. illumination + history -> accumulated color (into the color history when no iteration is
   //    fed back and the history has two slots), moments and history length.
-  //    Fused, the same thread reprojects the illumination it just wrote, and packs the guides.
+  //    Fused, the same thread first packs its pixel's guides (the filters' and the next
+  //    frame's previous guides), then demodulates and reprojects the illumination it just
+  //    wrote. Packed first: the normals may lie in the accumulation's planes, which the
+  //    reprojection writes after reading its own pixel's (SvgfDenoiser: the frame's normals).
   //    Unfused with packed guides, the demodulation packs them.
   const PackGuidesKernel pack{b.guides, reinterpret_cast<Packed4*>(b.packed_guides)};
   //    With the sanitize stage fused, the same thread first repairs its pixel's inputs in place.
   if constexpr (Flavor::kFusedReprojection) {
-    const auto first = then(demodulate_kernel_for(b, p),
-                            then(reproject_kernel_for(b, p, has_history, lambda), pack));
+    const auto first = then(pack, then(demodulate_kernel_for(b, p),
+                                       reproject_kernel_for<Flavor>(b, p, has_history, lambda)));
     if (sanitize) engine.run_tallying(stage::kDemodulate, then(*sanitize, first), w, h);
     else engine.run(stage::kDemodulate, first, w, h);
   } else {
@@ -313,7 +337,8 @@ void run_svgf_signal(Engine& engine, const SvgfFrameBuffers& buffers, const Svgf
       engine.run(stage::kDemodulate, then(demodulate_kernel_for(b, p), pack), w, h);
     else
       engine.run(stage::kDemodulate, demodulate_kernel_for(b, p), w, h);
-    engine.run(stage::kReproject, reproject_kernel_for(b, p, has_history, lambda), w, h);
+    engine.run(stage::kReproject, reproject_kernel_for<Flavor>(b, p, has_history, lambda), w,
+               h);
   }
   const auto guides = filter_guides(flavor, b);
 

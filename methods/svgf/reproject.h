@@ -20,9 +20,13 @@
 
 namespace svgf {
 
-struct ReprojectKernel {
+// PrevGuides: how the previous frame's depth, normal and mesh id are stored: GuideView's
+// planes, or PackedGuides (depth + normal as one 16-byte load a tap: the packed flavors, whose
+// denoiser keeps the previous frame's packed guides as its history; methods/svgf/denoiser.h).
+template <class PrevGuides>
+struct ReprojectKernelT {
   GuideView guides;           // this frame
-  GuideView prev_guides;      // the previous frame's depth, normal and mesh id
+  PrevGuides prev_guides;     // the previous frame's depth, normal and mesh id
   // The depth this frame's points had in the previous frame's camera (the identity when the
   // camera did not move, or when params.reproject_camera_depth is off).
   PreviousViewDepth previous_depth;
@@ -76,7 +80,8 @@ struct ReprojectKernel {
     Vec3 normal;
   };
   SVGF_HD TapGuides tap_guides(int j) const {
-    return {prev_guides.mesh_id[j], prev_guides.depth[j], prev_guides.normal.load(j)};
+    const DepthNormal g = prev_guides.depth_normal(j);
+    return {prev_guides.mesh_id[j], g.depth, g.normal};
   }
   // All three tests are evaluated (no early exit), so a vectorized caller loads unconditionally.
   SVGF_HD bool tap_matches(const TapTest& t, const TapGuides& g) const {
@@ -289,5 +294,7 @@ struct ReprojectKernel {
     history[i] = length;
   }
 };
+
+using ReprojectKernel = ReprojectKernelT<GuideView>;
 
 }  // namespace svgf
