@@ -344,19 +344,20 @@ bool sanitize_fused(Mode mode, const SvgfParams& p, const FrameTraits& f) {
 
 // Demodulate + reproject + guide packing in one kernel (fast mode, and CUDA's exact mode:
 // kFusedReprojection in methods/svgf/flavors.h), timed and counted as Demodulate. The
-// illumination comes back from the thread's own write. Background pixels read depth and normal
+// illumination stays in the thread's registers. Background pixels read depth and normal
 // only (to pack them), besides color and albedo. `sanitize`: the sanitize stage rides on it:
 // its tests, and on background the planes only it reads (depth dx/dy, motion 2).
 StageCost fused_reprojection_cost(const SvgfParams& p, const FrameTraits& f, bool surface,
                                   bool sanitize) {
   StageCost c;
   c.read = (3 + 3 + (f.emission ? 3 : 0) + (surface ? 9 + 5 + 6 : sanitize ? 8 : 4)) * kFloat;
-  c.written = (3 + 4 + 2 + 1 + 4) * kFloat;  // + packed guides (depth, normal)
+  // The illumination stays in registers (stored for the keep_scratch debug buffer only).
+  c.written = (4 + 2 + 1 + 4) * kFloat;  // + packed guides (depth, normal)
   c.ops = kDemodulate + (f.emission ? kEmission : 0) + (surface ? kReproject : kReprojectNoHistory);
   c.planes =
       "R color 3, albedo 3, emission 3 (if any), guides 9, previous guides 5 (packed depth + "
-      "normal 4, mesh id), history 6 (background: depth, normal); W illumination 3, "
-      "accumulated 4, moments 2, length 1, packed guides 4";
+      "normal 4, mesh id), history 6 (background: depth, normal); W accumulated 4, moments 2, "
+      "length 1, packed guides 4 (the illumination in registers)";
   if (sanitize) {
     c.ops += sanitize_cost(f.emission).ops;
     c.planes += "; the sanitize stage's tests (background: + depth dx/dy, motion 2)";

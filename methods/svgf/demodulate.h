@@ -18,8 +18,11 @@ struct DemodulateKernel {
 
   SVGF_HD void operator()(int x, int y) const {
     const int i = y * width + x;
-    illumination.store(i, demodulated(color.load(i), emission.load_or_zero(i), albedo.load(i),
-                                      albedo_epsilon));
+    illumination.store(i, at(i));
+  }
+  // Pixel i's illumination.
+  SVGF_HD Vec3 at(int i) const {
+    return demodulated(color.load(i), emission.load_or_zero(i), albedo.load(i), albedo_epsilon);
   }
 };
 

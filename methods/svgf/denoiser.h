@@ -255,6 +255,7 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
     b.next_moment2 = backend_.plane(moments_[set][next], 1);
     b.next_history = backend_.plane(history_[set][next], 0);
     b.illumination = illumination_planes();
+    b.illumination_read_back = keep_scratch_;
     // The accumulation's variance; its color only where an iteration is fed back (otherwise
     // the pipeline accumulates into the color history, methods/svgf/pipeline.h).
     auto& acc = keep_scratch_ ? accumulated_ : signal_[1];

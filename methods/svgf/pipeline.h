@@ -56,6 +56,9 @@ struct SvgfFrameBuffers {
   float* next_history = nullptr;
   // Scratch.
   RgbView illumination;
+  // Whether the illumination is read back after the frame (the keep_scratch debug buffer):
+  // else the packed flavors' first kernel passes it on in registers and stores none.
+  bool illumination_read_back = true;
   IllumVarView accumulated;
   // The a-trous ping-pong: 4 floats a pixel each, 16-byte aligned. SvgfExact uses them as four
   // planes (filtered[k]), the packed flavors as packed pixels (packed[k]).
@@ -321,15 +324,17 @@ void run_svgf_signal(Engine& engine, const SvgfFrameBuffers& buffers, const Svgf
   // 2. illumination + history -> accumulated color (into the color history when no iteration is
   //    fed back and the history has two slots), moments and history length.
   //    Fused, the same thread first packs its pixel's guides (the filters' and the next
-  //    frame's previous guides), then demodulates and reprojects the illumination it just
-  //    wrote. Packed first: the normals may lie in the accumulation's planes, which the
+  //    frame's previous guides), then demodulates and reprojects, the illumination passed on
+  //    in registers (stored only where it is read back: SvgfFrameBuffers). Packed first: the normals may lie in the accumulation's planes, which the
   //    reprojection writes after reading its own pixel's (SvgfDenoiser: the frame's normals).
   //    Unfused with packed guides, the demodulation packs them.
   const PackGuidesKernel pack{b.guides, reinterpret_cast<Packed4*>(b.packed_guides)};
   //    With the sanitize stage fused, the same thread first repairs its pixel's inputs in place.
   if constexpr (Flavor::kFusedReprojection) {
-    const auto first = then(pack, then(demodulate_kernel_for(b, p),
-                                       reproject_kernel_for<Flavor>(b, p, has_history, lambda)));
+    const auto reproject = reproject_kernel_for<Flavor>(b, p, has_history, lambda);
+    const DemodulateAndReproject<std::decay_t<decltype(reproject)>> pixel{
+        demodulate_kernel_for(b, p), reproject, b.illumination_read_back};
+    const auto first = then(pack, pixel);
     if (sanitize) engine.run_tallying(stage::kDemodulate, then(*sanitize, first), w, h);
     else engine.run(stage::kDemodulate, first, w, h);
   } else {

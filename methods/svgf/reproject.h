@@ -15,6 +15,7 @@
 #include "core/modulation.h"
 #include "core/previous_depth.h"
 #include "core/views.h"
+#include "methods/svgf/demodulate.h"
 #include "methods/svgf/gradient.h"
 #include "methods/svgf/params.h"
 
@@ -239,7 +240,10 @@ struct ReprojectKernelT {
 
   SVGF_HD void operator()(int x, int y) const {
     const int i = guides.index(x, y);
-    const Vec3 c = illumination.load(i);
+    pixel(x, y, i, illumination.load(i));
+  }
+  // Pixel (x, y), index i, with its illumination c (DemodulateAndReproject passes it on).
+  SVGF_HD void pixel(int x, int y, int i, Vec3 c) const {
     const float l = luminance(c);
     History h = read_history(x, y, i);
     const float drop = h.valid ? antilag_drop(x, y, i, l, h) : 0.f;
@@ -296,5 +300,21 @@ struct ReprojectKernelT {
 };
 
 using ReprojectKernel = ReprojectKernelT<GuideView>;
+
+// The demodulation and the reprojection of a pixel in one thread (the packed flavors' first
+// kernel): the illumination passes on in registers, and is stored only where it is read back
+// (`store_illumination`: the keep_scratch debug buffer); the same value either way.
+template <class Reproject>
+struct DemodulateAndReproject {
+  DemodulateKernel demodulate;
+  Reproject reproject;
+  bool store_illumination = true;
+  SVGF_HD void operator()(int x, int y) const {
+    const int i = y * demodulate.width + x;
+    const Vec3 c = demodulate.at(i);
+    if (store_illumination) demodulate.illumination.store(i, c);
+    reproject.pixel(x, y, i, c);
+  }
+};
 
 }  // namespace svgf
