@@ -325,8 +325,9 @@ void run_svgf_signal(Engine& engine, const SvgfFrameBuffers& buffers, const Svgf
   //    fed back and the history has two slots), moments and history length.
   //    Fused, the same thread first packs its pixel's guides (the filters' and the next
   //    frame's previous guides), then demodulates and reprojects, the illumination passed on
-  //    in registers (stored only where it is read back: SvgfFrameBuffers). Packed first: the normals may lie in the accumulation's planes, which the
-  //    reprojection writes after reading its own pixel's (SvgfDenoiser: the frame's normals).
+  //    in registers (stored only where it is read back: SvgfFrameBuffers). Packed first: the
+  //    normals may lie in the accumulation's planes, which the reprojection writes after
+  //    reading its own pixel's (SvgfDenoiser: the frame's normals).
   //    Unfused with packed guides, the demodulation packs them.
   const PackGuidesKernel pack{b.guides, reinterpret_cast<Packed4*>(b.packed_guides)};
   //    With the sanitize stage fused, the same thread first repairs its pixel's inputs in place.
