@@ -215,10 +215,7 @@ class CudaBackend {
     shading_.upload_async(staging + kKeptPlanes * n, (planes - kKeptPlanes) * n,
                           engine_.stream());
     if (gradient)
-      SVGF_CUDA_CHECK(cudaMemcpyAsync(gradient_into, staging + kGradient * n,
-                                      3 * n * sizeof(float), cudaMemcpyHostToDevice,
-                                      engine_.stream()),
-                      "upload of the gradient samples");
+      upload(gradient_into, staging + kGradient * n, 3 * n, "upload of the gradient samples");
     if (position) position_.upload_async(staging_position_.get(), 3 * n, engine_.stream());
     if (split) split_.upload_async(staging_split_.get(), 6 * n, engine_.stream());
     return landed_inputs(emission, gradient ? gradient_into : nullptr, position, split,

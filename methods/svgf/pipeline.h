@@ -117,36 +117,35 @@ auto signal_buffer(Flavor, const SvgfFrameBuffers& b, int k) {
   else return b.filtered(k);
 }
 
-// The guides the filter stages read, as the flavor stores them.
+// Guides as the flavor stores them: the planes, or (packed flavors) their depth and normal
+// read from `packed` (4 floats a pixel), the rest from the planes.
 template <class Flavor>
-auto filter_guides(Flavor, const SvgfFrameBuffers& b) {
+auto flavor_guides(Flavor, const GuideView& planes, const float* packed) {
   if constexpr (kPacksGuides<Flavor>) {
     PackedGuides g;
-    g.width = b.guides.width;
-    g.height = b.guides.height;
-    g.depth_normal_data = reinterpret_cast<const Packed4*>(b.packed_guides);
-    g.depth_dx = b.guides.depth_dx;
-    g.depth_dy = b.guides.depth_dy;
+    g.width = planes.width;
+    g.height = planes.height;
+    g.depth_normal_data = reinterpret_cast<const Packed4*>(packed);
+    g.depth_dx = planes.depth_dx;
+    g.depth_dy = planes.depth_dy;
+    g.mesh_id = planes.mesh_id;
     return g;
   } else {
-    return b.guides;
+    return planes;
   }
 }
 
-// The previous frame's guides as the flavor's reprojection reads them: planes, or (packed
-// flavors) the packed guides that frame wrote, with its mesh ids.
+// The guides the filter stages read.
 template <class Flavor>
-auto reprojected_guides(Flavor, const SvgfFrameBuffers& b) {
-  if constexpr (kPacksGuides<Flavor>) {
-    PackedGuides g;
-    g.width = b.prev_guides.width;
-    g.height = b.prev_guides.height;
-    g.depth_normal_data = reinterpret_cast<const Packed4*>(b.prev_packed_guides);
-    g.mesh_id = b.prev_guides.mesh_id;
-    return g;
-  } else {
-    return b.prev_guides;
-  }
+auto filter_guides(Flavor flavor, const SvgfFrameBuffers& b) {
+  return flavor_guides(flavor, b.guides, b.packed_guides);
+}
+
+// The previous frame's guides as the reprojection reads them (packed flavors: the packed
+// guides that frame wrote, with its mesh ids).
+template <class Flavor>
+auto reprojected_guides(Flavor flavor, const SvgfFrameBuffers& b) {
+  return flavor_guides(flavor, b.prev_guides, b.prev_packed_guides);
 }
 
 // The feedback tap's copy of the filtered color into the color history, from the flavor's
