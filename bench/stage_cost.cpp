@@ -342,6 +342,12 @@ bool sanitize_fused(Mode mode, const SvgfParams& p, const FrameTraits& f) {
          sanitize_fusable(p, /*has_history=*/true, gradient_runs(p, f), f.split);
 }
 
+// Whether the packed flavors' accumulation has a variance plane: only from a split frame on.
+// Otherwise the CUDA denoiser keeps the frame's scratch in the history (methods/svgf/denoiser.h:
+// scratch_in_history): the first kernel writes the accumulated color only, and the variance
+// stage derives the variance from the moments (1 float more read there).
+bool packed_variance_plane(const FrameTraits& f) { return f.split; }
+
 // Demodulate + reproject + guide packing in one kernel (fast mode, and CUDA's exact mode:
 // kFusedReprojection in methods/svgf/flavors.h), timed and counted as Demodulate. The
 // illumination stays in the thread's registers. Background pixels read depth and normal
@@ -352,12 +358,13 @@ StageCost fused_reprojection_cost(const SvgfParams& p, const FrameTraits& f, boo
   StageCost c;
   c.read = (3 + 3 + (f.emission ? 3 : 0) + (surface ? 9 + 5 + 6 : sanitize ? 8 : 4)) * kFloat;
   // The illumination stays in registers (stored for the keep_scratch debug buffer only).
-  c.written = (4 + 2 + 1 + 4) * kFloat;  // + packed guides (depth, normal)
+  const double accumulated = packed_variance_plane(f) ? 4 : 3;
+  c.written = (accumulated + 2 + 1 + 4) * kFloat;  // + packed guides (depth, normal)
   c.ops = kDemodulate + (f.emission ? kEmission : 0) + (surface ? kReproject : kReprojectNoHistory);
   c.planes =
       "R color 3, albedo 3, emission 3 (if any), guides 9, previous guides 5 (packed depth + "
-      "normal 4, mesh id), history 6 (background: depth, normal); W accumulated 4, moments 2, "
-      "length 1, packed guides 4 (the illumination in registers)";
+      "normal 4, mesh id), history 6 (background: depth, normal); W accumulated 4 (3 without a "
+      "split frame), moments 2, length 1, packed guides 4 (the illumination in registers)";
   if (sanitize) {
     c.ops += sanitize_cost(f.emission).ops;
     c.planes += "; the sanitize stage's tests (background: + depth dx/dy, motion 2)";
@@ -427,10 +434,14 @@ StageCost exact_cost(Stage stage, const SvgfParams& p, const FrameTraits& f, boo
       // are read on the young-history path only); a background pixel's length is 1, so it
       // reads its depth too.
       // Packed: the background's depth comes with its normal.
-      c.read = (1 + 4 + (surface ? 0 : packed ? 4 : 1)) * kFloat;  // length, accumulated, (depth)
+      // Packed without a variance plane: the moments instead (packed_variance_plane).
+      c.read = (1 + 4 + (packed && !packed_variance_plane(f) ? 1 : 0) +
+                (surface ? 0 : packed ? 4 : 1)) *
+               kFloat;  // length, accumulated (or its color and the moments), (depth)
       c.written = 4 * kFloat;  // filtered[0] color + variance
       c.ops = kVarianceSteady;
-      c.planes = packed ? "R length 1, accumulated 4 (background: + packed guides 4); W packed 4"
+      c.planes = packed ? "R length 1, accumulated 4 or its color 3 and moments 2 (background: + "
+                          "packed guides 4); W packed 4"
                         : "R length 1, accumulated 4 (background: + depth 1); W color + variance 4";
       if (surface) c = with_young_variance(c, p, f, kExactVarianceTap, kExactVarianceYoung);
       break;
@@ -478,10 +489,12 @@ StageCost fast_cost(Stage stage, const SvgfParams& p, const FrameTraits& f, bool
     case Stage::Demodulate:
       return fused_reprojection_cost(p, f, surface, sanitize_fused(Mode::Fast, p, f));
     case Stage::Variance:  // the same functor as exact mode's: guides on background only
-      c.read = (1 + 4 + (surface ? 0 : 4)) * kFloat;  // length, accumulated, (packed guides)
-      c.written = 4 * kFloat;                         // packed color + variance
+      // length, accumulated (or its color and the moments), (packed guides)
+      c.read = (1 + 4 + (packed_variance_plane(f) ? 0 : 1) + (surface ? 0 : 4)) * kFloat;
+      c.written = 4 * kFloat;  // packed color + variance
       c.ops = kVarianceSteady;
-      c.planes = "R length 1, accumulated 4 (background: + packed guides 4); W packed 4";
+      c.planes = "R length 1, accumulated 4 or its color 3 and moments 2 (background: + packed "
+                 "guides 4); W packed 4";
       if (surface) c = with_young_variance(c, p, f, kFastVarianceTap, kFastVarianceYoung);
       break;
     case Stage::Atrous:

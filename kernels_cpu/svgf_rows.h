@@ -27,9 +27,15 @@ void run_gradient_atrous_rows(const GradientAtrousKernel& kernel, int strata_wid
 void run_gradient_lambda_rows(const GradientLambdaKernel& kernel, int strata_width,
                               int strata_height);
 
+// The reprojection and variance rows stream the accumulation's variance plane, which the CPU
+// denoiser always gives; a kernel without one (the variance then derived from the moments,
+// methods/svgf/variance.h) runs per pixel.
 template <>
 struct PixelDriver<ReprojectKernel> {
-  static void run(const ReprojectKernel& k, int w, int h) { run_reproject_rows(k, w, h); }
+  static void run(const ReprojectKernel& k, int w, int h) {
+    if (k.accumulated.variance) run_reproject_rows(k, w, h);
+    else for_each_pixel(w, h, k);
+  }
 };
 
 template <>
@@ -63,6 +69,7 @@ struct PixelDriver<AtrousIteration<SvgfExact, Power, IllumVarView>> {
 template <class Power>
 struct PixelDriver<VarianceEstimate<SvgfExact, Power, IllumVarView>> {
   static void run(const VarianceEstimate<SvgfExact, Power, IllumVarView>& k, int w, int h) {
+    if (!k.accumulated.variance) return for_each_pixel(w, h, k);
     run_variance_rows(
         VarianceKernel{k.guides, k.accumulated, k.moment1, k.moment2, k.history, k.out, k.params,
                        k.color_history},

@@ -28,7 +28,7 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
     params_.validate();
     if constexpr (kGuideHistory) backend_.keep_previous_mesh_ids_only();
     backend_.set_method_planes(
-        3 * color_history_slots() + 2 * (2 + 1 + 4) +
+        3 * color_history_slots() + 2 * (2 + 1) + (scratch_in_history() ? 4 : 2 * 4) +
         (keep_scratch_ ? 3 + (accumulates_color() ? 4 : 1) : 0) +
         (packs_guides() ? 4 * packed_guide_slots() : 0) + (kGuideHistory && keep_scratch_ ? 3 : 0) +
         (gradient_mode() && (keep_scratch_ || params_.split != SplitMode::Off) ? 1 : 0) +
@@ -89,13 +89,10 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
     if (split != split_history_) has_history_ = false;
     auto& engine = backend_.engine();
     backend_.begin_frame(in, out);
-    // The gradient samples land in the illumination's planes (a backend that copies them; the
-    // CPU reads them in place): the gradient stages read them before the demodulation writes
-    // the illumination (run_svgf_frame, methods/svgf/pipeline.h), so they need no planes of
-    // their own.
-    // A backend that sanitizes in its own planes leaves that stage to the frame, which fuses
-    // it into its first kernel where it can (run_svgf_frame).
-    float* gradient_into = gradient_mode() ? illumination_planes().r : nullptr;
+    // The gradient samples land in scratch (a backend that copies them; the CPU reads them in
+    // place): gradient_samples_planes. A backend that sanitizes in its own planes leaves that
+    // stage to the frame, which fuses it into its first kernel where it can (run_svgf_frame).
+    float* gradient_into = gradient_mode() ? gradient_samples_planes() : nullptr;
     const FrameInputs cur = backend_.inputs(in, /*position=*/false, split, gradient_into,
                                             /*defer_sanitize=*/true, normals_planes());
 
@@ -114,7 +111,7 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
       b.next_taa = backend_.rgb(taa_history_[1 - slot_]);
     }
     if (gradient_mode()) {
-      b.strata = strata_shared_ ? backend_.plane(signal_[0], 3) : backend_.plane(strata_, 0);
+      place_strata(b);
       if (has_gradient_samples(in)) b.gradient_samples = cur.gradient;
     }
     SvgfFrameBuffers indirect;
@@ -210,11 +207,17 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
   // The stratum image's planes in whole planes of the frame's size (a stratum plane is a
   // ninth of one, so one usually holds them all).
   int stratum_buffer_planes() const {
-    const size_t pixels = static_cast<size_t>(backend_.width()) * backend_.height();
-    const size_t strata = static_cast<size_t>(strata_along(backend_.width())) *
-                          strata_along(backend_.height());
-    const size_t floats = kGradientStratumPlanes * strata;
-    return static_cast<int>((floats + pixels - 1) / pixels);
+    const size_t floats = kGradientStratumPlanes * stratum_count();
+    return static_cast<int>((floats + pixels() - 1) / pixels());
+  }
+  // Whether the stratum planes but lambda fit one plane of the frame's size (all but tiny frames:
+  // a stratum plane is about a ninth of one).
+  bool stratum_workspace_fits_plane() const {
+    return (kGradientStratumPlanes - 1) * stratum_count() <= pixels();
+  }
+  size_t pixels() const { return static_cast<size_t>(backend_.width()) * backend_.height(); }
+  size_t stratum_count() const {
+    return static_cast<size_t>(strata_along(backend_.width())) * strata_along(backend_.height());
   }
 
   // Whether this frame is filtered as direct + indirect; std::invalid_argument for a frame that
@@ -256,14 +259,20 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
     b.next_history = backend_.plane(history_[set][next], 0);
     b.illumination = illumination_planes();
     b.illumination_read_back = keep_scratch_;
-    // The accumulation's variance; its color only where an iteration is fed back (otherwise
-    // the pipeline accumulates into the color history, methods/svgf/pipeline.h).
+    // The accumulation's variance (none with the scratch in the history: the variance stage
+    // derives it from the moments); its color only where an iteration is fed back or the color
+    // history has one slot (otherwise the pipeline accumulates into the color history,
+    // methods/svgf/pipeline.h).
     auto& acc = keep_scratch_ ? accumulated_ : signal_[1];
     if (accumulates_color())
-      b.accumulated = {backend_.rgb(acc), backend_.plane(acc, 3)};
+      b.accumulated = {backend_.rgb(acc),
+                       scratch_in_history() ? nullptr : backend_.plane(acc, 3)};
     else
       b.accumulated = {RgbView(), backend_.plane(acc, 0)};
-    b.signal[0] = backend_.plane(signal_[0], 0);
+    // The a-trous ping-pong; with the scratch in the history, buffer 0 is the previous frame's
+    // packed guides, which nothing reads after the reprojection.
+    b.signal[0] = scratch_in_history() ? backend_.plane(packed_guides_[prev], 0)
+                                       : backend_.plane(signal_[0], 0);
     b.signal[1] = backend_.plane(signal_[1], 0);
     b.output = output;
     return b;
@@ -304,20 +313,65 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
   // caller keeps the scratch to read it back, the illumination takes a-trous buffer 0's first
   // three planes and the accumulation (1 or 4 planes) buffer 1's: 4 planes fewer (5 with
   // A-SVGF's stratum image, allocate()). A split frame's two signals run these stages one after
-  // the other, so they share them too.
+  // the other, so they share them too. On a backend with packed storage the scratch goes
+  // further, into the history (scratch_in_history below).
   RgbView illumination_planes() {
-    return backend_.rgb(keep_scratch_ ? illumination_ : signal_[0]);
+    if (keep_scratch_) return backend_.rgb(illumination_);
+    if (scratch_in_history()) return RgbView();  // never stored (the first kernel's registers)
+    return backend_.rgb(signal_[0]);
+  }
+
+  // The scratch in the history (issue 14 item 5): on a backend with packed storage, without
+  // keep_scratch and until a split frame comes, the frame's scratch lives in planes of the
+  // history that are dead while it lives, and a-trous buffer 0 is not allocated (4 planes fewer):
+  // - the gradient samples and A-SVGF's stratum planes but lambda: in the next packed-guide
+  //   slot (three planes, then the fourth), which the first pixel kernel writes only after the
+  //   gradient stages have read them;
+  // - lambda, which that kernel reads at other pixels than its own: in a-trous buffer 1's
+  //   fourth plane, free in that kernel since the accumulation has no variance plane (the
+  //   variance stage derives it from the moments, methods/svgf/variance.h); the frame's normals
+  //   and then the accumulated color in its first three, as before;
+  // - the a-trous ping-pong: buffer 0 in the previous packed-guide slot, which nothing reads
+  //   after the first kernel (buffer 1 is then free too).
+  // A split frame's second signal reads the previous guides and lambda after the first signal's
+  // a-trous: from the first split frame on, a-trous buffer 0 and the stratum image have their
+  // own planes again (allocate_split); keep_scratch keeps every buffer apart, the layout the
+  // shared one is tested against (tests/svgf_packed_exact_test.cpp).
+  bool scratch_in_history() const { return kGuideHistory && !keep_scratch_ && !split_allocated_; }
+
+  // Where the gradient samples land: the next packed-guide slot (scratch_in_history) or the
+  // illumination's planes, both written only after the gradient stages have read them
+  // (run_svgf_frame, methods/svgf/pipeline.h).
+  float* gradient_samples_planes() {
+    return scratch_in_history() ? backend_.plane(packed_guides_[1 - slot_], 0)
+                                : illumination_planes().r;
+  }
+
+  // A-SVGF's stratum image: planes of its own, a-trous buffer 0's fourth plane (strata_shared_),
+  // or the next packed-guide slot's fourth plane with lambda in a-trous buffer 1's
+  // (scratch_in_history, where the planes but lambda fit one plane).
+  void place_strata(SvgfFrameBuffers& b) {
+    if (!strata_.empty()) {
+      b.strata = backend_.plane(strata_, 0);
+    } else if (strata_shared_) {
+      b.strata = backend_.plane(signal_[0], 3);
+    } else {
+      b.strata = backend_.plane(packed_guides_[1 - slot_], 3);
+      b.lambda = backend_.plane(signal_[1], 3);
+    }
   }
 
   void allocate() {
     split_allocated_ = false;
+    signal_[0] = {};  // a split frame's, at the size before
+    strata_ = {};
     try {
       for (int s = 0; s < 2; ++s) {
         if (s < color_history_slots())
           backend_.allocate(color_history_[0][s], 3, "color history");
         backend_.allocate(moments_[0][s], 2, "moments");
         backend_.allocate(history_[0][s], 1, "history length");
-        backend_.allocate(signal_[s], 4, "a-trous buffers");
+        if (s == 1 || !scratch_in_history()) backend_.allocate(signal_[s], 4, "a-trous buffers");
       }
       if (keep_scratch_) {
         backend_.allocate(illumination_, 3, "illumination");
@@ -333,11 +387,15 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
         for (auto& t : taa_history_) backend_.allocate(t, 3, "TAA history");
       }
       // A-SVGF's stratum image lives from the gradient stages to the end of the reprojection
-      // (its lambda): in a-trous buffer 0's fourth plane where it fits one, beside the gradient
-      // samples and the illumination, until a split frame comes (its indirect signal reads
-      // lambda after the direct signal's variance stage has written buffer 0).
-      strata_shared_ = gradient_mode() && !keep_scratch_ && stratum_buffer_planes() == 1;
-      if (gradient_mode() && !strata_shared_)
+      // (its lambda): with the scratch in the history where its planes but lambda fit one plane
+      // (scratch_in_history), else in a-trous buffer 0's fourth plane where it fits one, beside
+      // the gradient samples and the illumination; from a split frame on in planes of its own
+      // (its indirect signal reads lambda after the direct signal's variance stage has written
+      // buffer 0).
+      const bool in_history = scratch_in_history() && stratum_workspace_fits_plane();
+      strata_shared_ = gradient_mode() && !keep_scratch_ && !scratch_in_history() &&
+                       stratum_buffer_planes() == 1;
+      if (gradient_mode() && !strata_shared_ && !in_history)
         backend_.allocate(strata_, stratum_buffer_planes(), "gradient strata");
     } catch (...) {
       release();  // nothing half-made stays; a later frame may try again
@@ -357,10 +415,10 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
       }
       backend_.allocate(indirect_output_, 3, "indirect output");
       if (kGuideHistory && normals_.empty()) backend_.allocate(normals_, 3, "frame normals");
-      if (strata_shared_) {
+      if (signal_[0].empty()) backend_.allocate(signal_[0], 4, "a-trous buffers");
+      if (gradient_mode() && strata_.empty())
         backend_.allocate(strata_, stratum_buffer_planes(), "gradient strata");
-        strata_shared_ = false;
-      }
+      strata_shared_ = false;
     } catch (...) {
       release();
       throw;

@@ -69,6 +69,9 @@ struct SvgfFrameBuffers {
   // stratum image, strata_along(width) x strata_along(height) floats each.
   GradientSampleView gradient_samples;
   float* strata = nullptr;
+  // Where lambda lies apart from the other stratum planes (the denoiser's scratch in the history,
+  // SvgfDenoiser::scratch_in_history): the reprojection reads it while it writes where they lie.
+  float* lambda = nullptr;
   // Output: the denoised, remodulated color.
   RgbView output;
   // With TAA (p.taa): remodulation writes `remodulated`; TAA blends it with the previous TAA
@@ -91,7 +94,7 @@ struct SvgfFrameBuffers {
     return {stratum_plane(3 * k), stratum_plane(3 * k + 1), stratum_plane(3 * k + 2)};
   }
   float* stratum_guides() const { return stratum_plane(6); }
-  float* gradient_lambda() const { return stratum_plane(7); }
+  float* gradient_lambda() const { return lambda ? lambda : stratum_plane(7); }
   IllumVarView filtered(int k) const {
     float* p = signal[k];
     const size_t n = pixels();

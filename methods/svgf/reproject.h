@@ -18,6 +18,7 @@
 #include "methods/svgf/demodulate.h"
 #include "methods/svgf/gradient.h"
 #include "methods/svgf/params.h"
+#include "methods/svgf/variance.h"
 
 namespace svgf {
 
@@ -47,7 +48,9 @@ struct ReprojectKernelT {
   // frame; none: the statistics anti-lag stands in for it where params.antilag asks for one.
   const float* gradient_lambda = nullptr;
   // Outputs.
-  IllumVarView accumulated;   // blended color and the temporal variance E[l^2] - E[l]^2
+  // Blended color and the temporal variance E[l^2] - E[l]^2 (moment_variance; no variance
+  // plane: the variance stage derives it from the moments, methods/svgf/variance.h).
+  IllumVarView accumulated;
   float* moment1 = nullptr;
   float* moment2 = nullptr;
   float* history = nullptr;
@@ -292,7 +295,7 @@ struct ReprojectKernelT {
     const float m1 = h.moments.x + (l - h.moments.x) * alpha_m;
     const float m2 = h.moments.y + (l * l - h.moments.y) * alpha_m;
     accumulated.color.store(i, color);
-    accumulated.variance[i] = max_f(0.f, m2 - m1 * m1);
+    if (accumulated.variance) accumulated.variance[i] = moment_variance(m1, m2);
     moment1[i] = m1;
     moment2[i] = m2;
     history[i] = length;

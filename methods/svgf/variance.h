@@ -24,6 +24,11 @@ SVGF_HD float variance_of_mean_scale(const SvgfParams& p, float history) {
   return n > 1.f ? 1.f / n : 1.f;
 }
 
+// The temporal variance E[l^2] - E[l]^2 of a pixel's luminance moments (paper Sec. 4.2): the
+// reprojection stores it beside the accumulated color where the denoiser gives it a plane, and
+// this stage derives it from the stored moments where not (the same floats, the same bits).
+SVGF_HD float moment_variance(float m1, float m2) { return max_f(0.f, m2 - m1 * m1); }
+
 // The variance a pixel of `history` frames passes on, from its temporal estimate.
 SVGF_HD float temporal_variance(const SvgfParams& p, float variance, float history) {
   return variance * variance_of_mean_scale(p, history);
@@ -41,7 +46,9 @@ template <class Flavor, class Power = NormalPower<typename Flavor::Arith>,
 struct VarianceEstimate {
   using Arith = typename Flavor::Arith;
   typename Flavor::Guides guides;
-  ConstIllumVarView accumulated;  // from reproject (separate planes in every flavor)
+  // From the reprojection (separate planes in every flavor); its variance plane is optional:
+  // without one the temporal variance comes from the moments (moment_variance).
+  ConstIllumVarView accumulated;
   const float* moment1 = nullptr;
   const float* moment2 = nullptr;
   const float* history = nullptr;
@@ -65,7 +72,9 @@ struct VarianceEstimate {
       return false;
     const Vec3 color = accumulated.color.load(i);
     if (color_history.r) color_history.store(i, color);
-    out.store(i, make_color_var(color, temporal_variance(params, accumulated.variance[i], h)));
+    const float variance =
+        accumulated.variance ? accumulated.variance[i] : moment_variance(moment1[i], moment2[i]);
+    out.store(i, make_color_var(color, temporal_variance(params, variance, h)));
     return true;
   }
 
