@@ -14,7 +14,8 @@
 //   float* plane(buffer, c); RgbView rgb(buffer, first); Image read(buffer)
 //                                          its planes as views; a host copy
 //   bool resize(w, h)                      frame size (true when buffers must be reallocated)
-//   FrameInputs inputs(frame, position, split, gradient_into, defer_sanitize, normals_into)
+//   FrameInputs inputs(frame, position, split, gradient_into, defer_sanitize, normals_into,
+//                      motion_into)
 //                                          this frame's inputs, sanitized unless the method
 //                                          may run that stage itself and the backend lets it;
 //                                          on the backend's side (world positions, direct and
@@ -23,12 +24,14 @@
 //                                          3 planes the method lends for the gradient samples,
 //                                          where a backend that copies them puts them;
 //                                          normals_into: likewise for the normals, after
-//                                          keep_previous_mesh_ids_only)
+//                                          keep_previous_mesh_ids_only; motion_into: for the
+//                                          motion's 2 planes, after keep_motion_in_lent_planes)
 //   GuideView previous_guides()            the frame before's depth, normal and mesh id (valid
 //                                          after one frame; its depth gradient and motion are
 //                                          not kept: null)
 //   keep_previous_mesh_ids_only()          the method keeps the frame before's depth and
 //                                          normal itself: previous_guides() has its mesh ids
+//   keep_motion_in_lent_planes()           the frame's motion goes to planes the method lends
 //   RgbView output(out)                    where the frame's output goes
 //   set_output_over_color()                the method reads the input color only before it
 //                                          writes the output: the output may take its planes
@@ -104,13 +107,15 @@ class CpuBackend {
   // the CUDA backend's planes).
   // `normals_into`: where the method keeps the previous guides itself, 3 planes it lends for
   // the frame's normals, where a backend that copies them puts them (the copying stand-in
-  // below, which holds the method to the lending as the CUDA backend does).
+  // below, which holds the method to the lending as the CUDA backend does). `motion_into`:
+  // likewise, 2 planes for the motion (keep_motion_in_lent_planes).
   FrameInputs inputs(const Frame& f, bool position = false, bool split = false,
                      float* gradient_into = nullptr, bool defer_sanitize = false,
-                     float* normals_into = nullptr) {
+                     float* normals_into = nullptr, float* motion_into = nullptr) {
     FrameInputs in;
     lent_color_ = {};
     lent_normals_ = normals_into;
+    lent_motion_ = motion_into;
     if (defer_sanitize && copies_inputs_) {
       in = copied_inputs(f, position, split);
       in.sanitize_pending = true;
@@ -155,6 +160,9 @@ class CpuBackend {
     return g;
   }
   void keep_previous_mesh_ids_only() { mesh_ids_only_ = true; }
+  // The frame's motion goes to the 2 planes the method lends (inputs()' motion_into) where this
+  // backend copies the inputs, as on CUDA (kernels_cuda/cuda_backend.h).
+  void keep_motion_in_lent_planes() {}
 
   // The CUDA backend lends the output the input color's planes where the method asks
   // (kernels_cuda/cuda_backend.h). This one reads the frame in place and writes the output
@@ -255,8 +263,11 @@ class CpuBackend {
     copy(f.depth.plane(0), kDepth);
     copy(f.depth_gradient.plane(0), kDepthDx);
     copy(f.depth_gradient.plane(1), kDepthDy);
-    copy(f.motion.plane(0), kMotionX);
-    copy(f.motion.plane(1), kMotionY);
+    // The motion likewise.
+    float* const motion_x = lent_motion_ ? lent_motion_ : repaired_.plane(kMotionX);
+    float* const motion_y = lent_motion_ ? lent_motion_ + n : repaired_.plane(kMotionY);
+    std::copy(f.motion.plane(0), f.motion.plane(0) + n, motion_x);
+    std::copy(f.motion.plane(1), f.motion.plane(1) + n, motion_y);
 
     InputPlanesOut out;
     out.color = repaired_.rgb(kColor);
@@ -271,8 +282,8 @@ class CpuBackend {
     out.depth = repaired_.plane(kDepth);
     out.depth_dx = repaired_.plane(kDepthDx);
     out.depth_dy = repaired_.plane(kDepthDy);
-    out.motion_x = repaired_.plane(kMotionX);
-    out.motion_y = repaired_.plane(kMotionY);
+    out.motion_x = motion_x;
+    out.motion_y = motion_y;
     InputPlanes in;
     in.color = out.color;
     in.albedo = out.albedo;
@@ -317,6 +328,7 @@ class CpuBackend {
   bool mesh_ids_only_ = false;      // keep_previous_mesh_ids_only
   RgbView lent_color_;              // this frame's output, where it is the copied color
   float* lent_normals_ = nullptr;   // inputs()' normals_into
+  float* lent_motion_ = nullptr;    // inputs()' motion_into
 
  protected:
   // Copy every frame's inputs and leave the sanitize stage to a method that asks to run it

@@ -68,7 +68,7 @@ class CudaBackend {
         allocate(guides_[s], mesh_ids_only_ ? 1 : kKeptPlanes,
                  mesh_ids_only_ ? "frame mesh ids" : "frame guides");
       if (mesh_ids_only_) allocate(depth_, 1, "frame depth");
-      allocate(shading_, kShadingPlanes, "frame inputs");
+      allocate(shading_, shading_planes(), "frame inputs");
       if (!output_over_color_) allocate(output_, 3, "output");
       staging_in_.resize(kInputPlanes * pixels(), "the pinned input staging buffer");
       staging_out_.resize(3 * pixels(), "the pinned output staging buffer");
@@ -106,13 +106,18 @@ class CudaBackend {
   // method lends (inputs()' normals_into). 7 planes fewer here (issue 14 item 5). Set before
   // the first frame (the denoiser's constructor).
   void keep_previous_mesh_ids_only() { mesh_ids_only_ = true; }
+  // The frame's motion lands in the 2 planes the method lends (inputs()' motion_into): SVGF's
+  // next moments, which its first pixel kernel writes over the motion pixel by pixel after
+  // reading it (methods/svgf/denoiser.h). 2 planes fewer here (issue 14 item 5). Set before the
+  // first frame (the denoiser's constructor).
+  void keep_motion_in_lent_planes() { motion_lent_ = true; }
 
   // `what` and what the whole frame size needs name the buffer in an out-of-memory error.
   // Zero-filled, as the CPU's: a buffer a method fills only in part (BMFR's per-block data)
   // reads back defined.
   void allocate(Buffer& b, int channels, const char* what) {
     const size_t planes = static_cast<size_t>((mesh_ids_only_ ? 2 + 1 : 2 * kKeptPlanes) +
-                                              kShadingPlanes + (output_over_color_ ? 0 : 3) +
+                                              shading_planes() + (output_over_color_ ? 0 : 3) +
                                               method_planes_);
     const size_t mib = (planes * pixels() * sizeof(float) + (1u << 20) - 1) >> 20;
     const std::string named = std::string(what) + " (" + std::to_string(width_) + "x" +
@@ -158,11 +163,13 @@ class CudaBackend {
   // them) into the 3 planes it lends there (memory it does not use until its gradient stage
   // has read them: no planes of the backend's own); null: not wanted. `normals_into`: the 3
   // planes the frame's normals go to where the method keeps the previous guides itself
-  // (keep_previous_mesh_ids_only; required there, null otherwise).
+  // (keep_previous_mesh_ids_only; required there, null otherwise); `motion_into` likewise, the
+  // 2 planes of its motion (keep_motion_in_lent_planes).
   FrameInputs inputs(const Frame& in, bool position = false, bool split = false,
                      float* gradient_into = nullptr, bool defer_sanitize = false,
-                     float* normals_into = nullptr) {
+                     float* normals_into = nullptr, float* motion_into = nullptr) {
     lend_normals(normals_into);
+    lend_motion(motion_into);
     const size_t n = pixels();
     float* staging = staging_in_.get();
     auto stage = [&](const float* src, int plane) {
@@ -212,8 +219,15 @@ class CudaBackend {
     } else {
       guides_[slot_].upload_async(staging, kKeptPlanes * n, engine_.stream());
     }
-    shading_.upload_async(staging + kKeptPlanes * n, (planes - kKeptPlanes) * n,
-                          engine_.stream());
+    if (motion_lent_) {
+      upload(input_plane(kDepthDx), staging + kDepthDx * n, 2 * n, "upload of the depth gradient");
+      upload(input_plane(kMotionX), staging + kMotionX * n, 2 * n, "upload of the motion");
+      upload(input_plane(kColor), staging + kColor * n, (planes - kColor) * n,
+             "upload of the frame's shading inputs");
+    } else {
+      shading_.upload_async(staging + kKeptPlanes * n, (planes - kKeptPlanes) * n,
+                            engine_.stream());
+    }
     if (gradient)
       upload(gradient_into, staging + kGradient * n, 3 * n, "upload of the gradient samples");
     if (position) position_.upload_async(staging_position_.get(), 3 * n, engine_.stream());
@@ -227,8 +241,9 @@ class CudaBackend {
   // are only read.
   FrameInputs inputs(const DeviceFrame& in, bool position = false, bool split = false,
                      float* gradient_into = nullptr, bool defer_sanitize = false,
-                     float* normals_into = nullptr) {
+                     float* normals_into = nullptr, float* motion_into = nullptr) {
     lend_normals(normals_into);
+    lend_motion(motion_into);
     if (position) ensure_position();
     if (split) ensure_split();
     StridedCopy copy;
@@ -314,6 +329,17 @@ class CudaBackend {
                                  : "cuda backend: normals lent to a backend that keeps them");
     lent_normals_ = planes;
   }
+  // Where this frame's motion goes (keep_motion_in_lent_planes).
+  void lend_motion(float* planes) {
+    if (motion_lent_ != (planes != nullptr))
+      throw std::logic_error(motion_lent_
+                                 ? "cuda backend: the method must lend the planes for the "
+                                   "frame's motion"
+                                 : "cuda backend: motion lent to a backend that keeps it");
+    lent_motion_ = planes;
+  }
+  // shading_'s planes: the depth gradient to the emission, but for a lent motion.
+  int shading_planes() const { return kShadingPlanes - (motion_lent_ ? 2 : 0); }
   void upload(float* device, const float* host, size_t floats, const char* what) {
     SVGF_CUDA_CHECK(cudaMemcpyAsync(device, host, floats * sizeof(float), cudaMemcpyHostToDevice,
                                     engine_.stream()),
@@ -419,7 +445,7 @@ class CudaBackend {
     kNormal = 1,    // 3
     kMeshId = 4,
     kKeptPlanes = 5,
-    kDepthDx = 5,   // from here on in shading_, at plane - kKeptPlanes
+    kDepthDx = 5,   // from here on in shading_, at plane - kKeptPlanes (input_plane)
     kDepthDy = 6,
     kMotionX = 7,
     kMotionY = 8,
@@ -472,7 +498,11 @@ class CudaBackend {
   RgbView output_view() const { return {output_plane(0), output_plane(1), output_plane(2)}; }
   // An input plane of this frame, in whichever buffer holds it.
   float* input_plane(int p) const {
-    if (p >= kKeptPlanes) return plane(shading_, p - kKeptPlanes);
+    if (p >= kKeptPlanes) {
+      if (!motion_lent_ || p < kMotionX) return plane(shading_, p - kKeptPlanes);
+      if (p <= kMotionY) return lent_motion_ + static_cast<size_t>(p - kMotionX) * pixels();
+      return plane(shading_, p - kKeptPlanes - 2);
+    }
     if (!mesh_ids_only_) return plane(guides_[slot_], p);
     if (p == kMeshId) return plane(guides_[slot_], 0);
     if (p == kDepth) return plane(depth_, 0);
@@ -489,6 +519,8 @@ class CudaBackend {
   bool output_over_color_ = false;  // set_output_over_color
   bool mesh_ids_only_ = false;      // keep_previous_mesh_ids_only
   float* lent_normals_ = nullptr;   // this frame's normals there (inputs()' normals_into)
+  bool motion_lent_ = false;        // keep_motion_in_lent_planes
+  float* lent_motion_ = nullptr;    // this frame's motion there (inputs()' motion_into)
   // The depth, normal and mesh id of this frame and the previous one (the methods read those
   // of the previous frame through previous_guides(), nothing else of it), and this frame's
   // other inputs once but for the gradient samples (in the method's lent planes): 2 x 5 + 13

@@ -26,13 +26,16 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
       : params_(params), mode_(config.mode), keep_scratch_(config.keep_scratch),
         backend_(config) {
     params_.validate();
-    if constexpr (kGuideHistory) backend_.keep_previous_mesh_ids_only();
+    if constexpr (kGuideHistory) {
+      backend_.keep_previous_mesh_ids_only();
+      backend_.keep_motion_in_lent_planes();
+    }
     backend_.set_method_planes(
         3 * color_history_slots() + 2 * (2 + 1) + (scratch_in_history() ? 4 : 2 * 4) +
         (keep_scratch_ ? 3 + (accumulates_color() ? 4 : 1) : 0) +
         (packs_guides() ? 4 * packed_guide_slots() : 0) + (kGuideHistory && keep_scratch_ ? 3 : 0) +
         (gradient_mode() && (keep_scratch_ || params_.split != SplitMode::Off) ? 1 : 0) +
-        (params_.taa ? 3 * 3 : 0));
+        (kGuideHistory && !motion_in_history() ? 2 : 0) + (params_.taa ? 3 * 3 : 0));
     // The frame reads the input color in the demodulation and the reprojection only, both done
     // before the remodulation (or TAA) writes the first output pixel (run_svgf_frame): the
     // output may take the color's planes on a backend that copies its inputs.
@@ -94,7 +97,8 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
     // stage to the frame, which fuses it into its first kernel where it can (run_svgf_frame).
     float* gradient_into = gradient_mode() ? gradient_samples_planes() : nullptr;
     const FrameInputs cur = backend_.inputs(in, /*position=*/false, split, gradient_into,
-                                            /*defer_sanitize=*/true, normals_planes());
+                                            /*defer_sanitize=*/true, normals_planes(),
+                                            motion_planes());
 
     SvgfFrameBuffers b = signal_buffers(cur, 0, backend_.output(out));
     b.sanitize_pending = cur.sanitize_pending;
@@ -184,6 +188,23 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
   float* normals_planes() {
     if constexpr (kGuideHistory) {
       return normals_.empty() ? backend_.plane(signal_[1], 0) : backend_.plane(normals_, 0);
+    } else {
+      return nullptr;
+    }
+  }
+
+  // The frame's motion, on a backend with packed storage (which copies the inputs; issue 14
+  // item 5): the reprojection reads a pixel's own motion only, before it writes that pixel's
+  // moments, and nothing reads the motion after the first pixel kernel but TAA. So it is
+  // uploaded into the next moments (motion_in_history): set 0's, or, from a split frame on, the
+  // indirect signal's, which only the second signal's reprojection writes, after the first
+  // one's has read the motion. 2 planes fewer. With TAA, and with keep_scratch (the layout the
+  // shared one is tested against), planes of their own.
+  bool motion_in_history() const { return kGuideHistory && !keep_scratch_ && !params_.taa; }
+  float* motion_planes() {
+    if constexpr (kGuideHistory) {
+      if (!motion_in_history()) return backend_.plane(motion_, 0);
+      return backend_.plane(moments_[split_allocated_ ? 1 : 0][1 - slot_], 0);
     } else {
       return nullptr;
     }
@@ -382,6 +403,8 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
           backend_.allocate(packed_guides_[s], 4, "packed guides");
       normals_ = {};  // a split frame's, at the size before
       if (kGuideHistory && keep_scratch_) backend_.allocate(normals_, 3, "frame normals");
+      motion_ = {};
+      if (kGuideHistory && !motion_in_history()) backend_.allocate(motion_, 2, "frame motion");
       if (params_.taa) {
         backend_.allocate(remodulated_, 3, "remodulated color");
         for (auto& t : taa_history_) backend_.allocate(t, 3, "TAA history");
@@ -445,6 +468,7 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
     packed_guides_[0] = {};
     packed_guides_[1] = {};
     normals_ = {};
+    motion_ = {};
     strata_ = {};
     strata_shared_ = false;
     backend_.release();
@@ -464,6 +488,7 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
   typename Backend::Buffer color_history_[2][2], moments_[2][2], history_[2][2];
   typename Backend::Buffer illumination_, accumulated_, signal_[2], packed_guides_[2], strata_;
   typename Backend::Buffer normals_;  // the frame's normals where a-trous buffer 1 cannot take them
+  typename Backend::Buffer motion_;   // the frame's motion where the next moments cannot take it
   typename Backend::Buffer indirect_output_;
   typename Backend::Buffer remodulated_, taa_history_[2];  // only with TAA
   LastReport report_;
