@@ -320,23 +320,18 @@ class CudaBackend {
   }
 
  private:
-  // Where this frame's normals go (keep_previous_mesh_ids_only).
-  void lend_normals(float* planes) {
-    if (mesh_ids_only_ != (planes != nullptr))
-      throw std::logic_error(mesh_ids_only_
-                                 ? "cuda backend: the method keeps the previous guides, so it "
-                                   "must lend the planes for the frame's normals"
-                                 : "cuda backend: normals lent to a backend that keeps them");
-    lent_normals_ = planes;
-  }
-  // Where this frame's motion goes (keep_motion_in_lent_planes).
-  void lend_motion(float* planes) {
-    if (motion_lent_ != (planes != nullptr))
-      throw std::logic_error(motion_lent_
-                                 ? "cuda backend: the method must lend the planes for the "
-                                   "frame's motion"
-                                 : "cuda backend: motion lent to a backend that keeps it");
-    lent_motion_ = planes;
+  // Where this frame's normals (keep_previous_mesh_ids_only) and motion
+  // (keep_motion_in_lent_planes) go: planes the method must lend where it asked for it, none
+  // otherwise.
+  void lend_normals(float* planes) { lent_normals_ = lent(planes, mesh_ids_only_, "normals"); }
+  void lend_motion(float* planes) { lent_motion_ = lent(planes, motion_lent_, "motion"); }
+  static float* lent(float* planes, bool asked, const char* what) {
+    if (asked != (planes != nullptr))
+      throw std::logic_error(std::string("cuda backend: ") +
+                             (asked ? "the method must lend the planes for the frame's "
+                                    : "planes lent for the frame's ") +
+                             what + (asked ? "" : ", which the backend keeps itself"));
+    return planes;
   }
   // shading_'s planes: the depth gradient to the emission, but for a lent motion.
   int shading_planes() const { return kShadingPlanes - (motion_lent_ ? 2 : 0); }
