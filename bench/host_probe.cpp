@@ -26,8 +26,11 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 // of three moved the 2-core VMs' floor by a fifth between runs; docs/benchmarks.md, "Floor").
 double fastest_of(const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); }
 
-// 16 vectors of 8 floats: enough independent mul->add chains to cover the latency of both.
-constexpr int kLanes = 128;
+// Independent mul->add chains, kLanes floats of them. How many it takes to cover the latency
+// depends on the machine: 8 vectors of 16 floats left a Zen 5 core's four 512-bit pipes at two
+// thirds of what 16 vectors reach (148 against 221 G ops/s, 2026-12-04), while 32 vectors spill
+// registers. So each variant runs 64, 128 and 256 lanes (4 to 32 vectors) and the fastest counts.
+template <int kLanes>
 __attribute__((always_inline)) inline float ops_chains(long iterations, float m, float a) {
   float acc[kLanes];
   for (int k = 0; k < kLanes; ++k) acc[k] = 1.f + 1e-3f * static_cast<float>(k);
@@ -37,34 +40,46 @@ __attribute__((always_inline)) inline float ops_chains(long iterations, float m,
   for (int k = 0; k < kLanes; ++k) s += acc[k];
   return s;
 }
+constexpr int kChainLanes[] = {64, 128, 256};
 
 // The chains compiled like each CPU kernel variant (kernels_cpu/CMakeLists.txt), and with this
 // file's own flags (SVGF_CPU_ARCH_FLAGS in a build of one custom variant). Static functions
 // with the chains inlined: nothing of one is shared with another.
 using OpsKernel = float (*)(long, float, float);
-__attribute__((noinline)) float ops_default(long n, float m, float a) { return ops_chains(n, m, a); }
+template <int kLanes>
+__attribute__((noinline)) float ops_default(long n, float m, float a) {
+  return ops_chains<kLanes>(n, m, a);
+}
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+template <int kLanes>
 __attribute__((noinline, target("arch=x86-64-v2"))) float ops_v2(long n, float m, float a) {
-  return ops_chains(n, m, a);
+  return ops_chains<kLanes>(n, m, a);
 }
+template <int kLanes>
 __attribute__((noinline, target("arch=x86-64-v3"))) float ops_v3(long n, float m, float a) {
-  return ops_chains(n, m, a);
+  return ops_chains<kLanes>(n, m, a);
 }
+template <int kLanes>
 __attribute__((noinline, target("arch=x86-64-v4,prefer-vector-width=512"))) float ops_v4(
     long n, float m, float a) {
-  return ops_chains(n, m, a);
+  return ops_chains<kLanes>(n, m, a);
 }
 #endif
 
+// One kernel a lane count of kChainLanes.
+struct OpsKernels {
+  OpsKernel of_lanes[3];
+};
+
 // The chains as the variant the kernels run (cpu::pick_variant) is compiled.
-OpsKernel ops_kernel() {
+OpsKernels ops_kernels() {
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
   const std::string id = cpu::pick_variant("").id;
-  if (id == "v2") return ops_v2;
-  if (id == "v3") return ops_v3;
-  if (id == "v4") return ops_v4;
+  if (id == "v2") return {{ops_v2<64>, ops_v2<128>, ops_v2<256>}};
+  if (id == "v3") return {{ops_v3<64>, ops_v3<128>, ops_v3<256>}};
+  if (id == "v4") return {{ops_v4<64>, ops_v4<128>, ops_v4<256>}};
 #endif
-  return ops_default;
+  return {{ops_default<64>, ops_default<128>, ops_default<256>}};
 }
 
 }  // namespace
@@ -138,23 +153,30 @@ double host_copy_gbs(int threads) {
 }
 
 double host_float_ops_per_s(int threads) {
-  const long iterations = 40'000'000;  // about 0.1 s a thread: thread start-up is noise
-  const OpsKernel kernel = ops_kernel();
-  tbb::task_arena arena(std::max(threads, 1));
-  std::vector<double> s;
-  std::vector<float> results(static_cast<size_t>(std::max(threads, 1)));
-  for (int rep = 0; rep < 7; ++rep) {
-    const auto t0 = std::chrono::steady_clock::now();
-    arena.execute([&] {
-      tbb::parallel_for(0, std::max(threads, 1), [&](int t) {
-        results[static_cast<size_t>(t)] = kernel(iterations, 0.999f, 0.001f);
+  const int n = std::max(threads, 1);
+  const OpsKernels kernels = ops_kernels();
+  tbb::task_arena arena(n);
+  std::vector<float> results(static_cast<size_t>(n));
+  double best = 0;
+  for (int c = 0; c < 3; ++c) {
+    // About 0.1 s a thread for every lane count: thread start-up is noise.
+    const long iterations = 40'000'000L * 128 / kChainLanes[c];
+    std::vector<double> s;
+    for (int rep = 0; rep < 7; ++rep) {
+      const auto t0 = std::chrono::steady_clock::now();
+      arena.execute([&] {
+        tbb::parallel_for(0, n, [&](int t) {
+          results[static_cast<size_t>(t)] = kernels.of_lanes[c](iterations, 0.999f, 0.001f);
+        });
       });
-    });
-    s.push_back(seconds_since(t0));
+      s.push_back(seconds_since(t0));
+    }
+    best = std::max(best, 2.0 * kChainLanes[c] * static_cast<double>(iterations) * n /
+                              fastest_of(s));
   }
   volatile float sink = 0.f;  // the results are used, so the loops are not removed
   for (float r : results) sink = sink + r;
-  return 2.0 * kLanes * static_cast<double>(iterations) * std::max(threads, 1) / fastest_of(s);
+  return best;
 }
 
 }  // namespace svgf::bench
