@@ -46,11 +46,13 @@ inline void blend_read(const ReprojectKernel& k, int i, int at, bool read, float
 
 // Pixels x0..x1-1 of row y through their bilinear taps, as read_history reads them: outputs
 // written for every pixel, and fallback[x] set where pixel x needs read_history's 3x3 block
-// instead (its outputs are meaningless then; the next pass overwrites them). A tap is loaded
-// clamped into the image (every load in bounds) and added where read_history adds it (inside
-// and consistent), the same sums.
+// instead (its outputs are meaningless then; the next pass overwrites them), unless the block
+// lies outside the previous frame (reads[x] 0: the output written here, without history, is
+// what the block would give). A tap is loaded clamped into the image (every load in bounds)
+// and added where read_history adds it (inside and consistent), the same sums.
 SVGF_TAP_LOOP void reproject_bilinear(const ReprojectKernel& kernel, int y, int x0, int x1,
-                                      const float* __restrict lambda, int* __restrict fallback) {
+                                      const float* __restrict lambda,
+                                      const int* __restrict reads, int* __restrict fallback) {
   using History = ReprojectKernel::History;
   const ReprojectKernel k = kernel;  // a local copy: its plane pointers stay in registers
   const int last_x = k.prev_guides.width - 1, last_y = k.prev_guides.height - 1;
@@ -75,7 +77,7 @@ SVGF_TAP_LOOP void reproject_bilinear(const ReprojectKernel& kernel, int y, int 
     }
     const bool bilinear = weight_sum >= min_weight;
     blend_read(k, i, i, moved & bilinear, lambda[x], ReprojectKernel::normalized(h, weight_sum));
-    fallback[x] = moved & !bilinear;
+    fallback[x] = reads[x] & !bilinear;  // reads[x]: moved, and the block in the frame
   }
 }
 
@@ -201,18 +203,54 @@ SVGF_TAP_LOOP void reproject_bilinear_windows(const ReprojectKernel& kernel, int
 }
 
 // Each pixel's top-left tap as a shift (dx[x], dy[x]) from it, for the pixels of row y;
-// moved[x] where it has history to read (previous_position).
+// moved[x] where it has history to read (previous_position); reads[x] where it may find some:
+// moved, and its bilinear taps or its 3x3 fallback block reach into the previous frame. A pixel
+// that moved but reads nothing (the edge a camera pan uncovers) ends without history, as one
+// that did not move: no tap or block pixel is consistent, and where reproject_min_weight is 0
+// the empty bilinear read's length is 0 / 0, which history_kept drops.
 SVGF_TAP_LOOP void tap_shifts(const ReprojectKernel& kernel, int y, int* __restrict dx,
-                              int* __restrict dy, int* __restrict moved) {
+                              int* __restrict dy, int* __restrict moved, int* __restrict reads) {
   const ReprojectKernel k = kernel;
   const int w = k.guides.width;
+  const int last_x = k.prev_guides.width - 1, last_y = k.prev_guides.height - 1;
   for (int x = 0; x < w; ++x) {
     float px = 0.f, py = 0.f;
     moved[x] = k.previous_position(x, y, k.guides.index(x, y), px, py);
-    const BilinearTaps taps = BilinearTaps::at(moved[x] ? px : 0.f, moved[x] ? py : 0.f);
+    const float mx = moved[x] ? px : 0.f, my = moved[x] ? py : 0.f;
+    const BilinearTaps taps = BilinearTaps::at(mx, my);
     dx[x] = taps.x0 - x;
     dy[x] = taps.y0 - y;
+    // The box of the 2x2 taps and of the 3x3 block around the nearest pixel.
+    const int xn = ReprojectKernel::nearest(mx), yn = ReprojectKernel::nearest(my);
+    const int left = xn - 1 < taps.x0 ? xn - 1 : taps.x0;
+    const int right = xn + 1 > taps.x0 + 1 ? xn + 1 : taps.x0 + 1;
+    const int top = yn - 1 < taps.y0 ? yn - 1 : taps.y0;
+    const int bottom = yn + 1 > taps.y0 + 1 ? yn + 1 : taps.y0 + 1;
+    const bool reaches = (right >= 0) & (left <= last_x) & (bottom >= 0) & (top <= last_y);
+    reads[x] = moved[x] & reaches;
   }
+}
+
+// Pixels x0..x1 of row y, none of which reads history (tap_shifts): the blend of a pixel
+// without history, which the bilinear pass and the fallback end in for them. At the edge a
+// camera pan uncovers, whole chunks are such pixels; through the gathers and the fallback's
+// nine they cost many times a window's chunk.
+SVGF_TAP_LOOP void reproject_without_history(const ReprojectKernel& kernel, int y, int x0,
+                                             int x1, const float* __restrict lambda,
+                                             int* __restrict fallback) {
+  const ReprojectKernel k = kernel;
+  for (int x = x0; x < x1; ++x) {
+    const int i = k.guides.index(x, y);
+    blend_read(k, i, i, false, lambda[x], ReprojectKernel::History{});
+    fallback[x] = 0;
+  }
+}
+
+// Whether any pixel of the chunk x0.. reads history.
+inline bool chunk_reads(const int* reads, int x0) {
+  int any = 0;
+  for (int x = x0; x < x0 + kChunk; ++x) any |= reads[x];
+  return any != 0;
 }
 
 // The kinds of window: the spread in x (0 to 2), plus 3 with a shift in y.
@@ -240,11 +278,12 @@ int chunk_window(const ReprojectKernel& k, int y, int x0, const int* dx, const i
 
 // A row's scratch.
 struct RowInts {
-  std::vector<int> dx, dy, moved, fallback, pending;
+  std::vector<int> dx, dy, moved, reads, fallback, pending;
   std::vector<float> lambda;  // each pixel's stratum's lambda (0 without the gradient stages)
   std::vector<ChunkWindow> windows;  // kWindowKinds lists, each room for every chunk
   explicit RowInts(int width)
-      : dx(static_cast<size_t>(width)), dy(dx.size()), moved(dx.size()), fallback(dx.size()),
+      : dx(static_cast<size_t>(width)), dy(dx.size()), moved(dx.size()), reads(dx.size()),
+        fallback(dx.size()),
         pending(dx.size()), lambda(dx.size()),
         windows(kWindowKinds * (dx.size() / kChunk + 1)) {}
 };
@@ -262,13 +301,14 @@ void row_lambdas(const ReprojectKernel& k, int y, float* __restrict lambda) {
 }
 
 // Row y's bilinear pass: the chunks whose taps lie in one window through
-// reproject_bilinear_windows (a call for each kind), the pixels between them through
+// reproject_bilinear_windows (a call for each kind), the chunks without a pixel that reads
+// history through reproject_without_history, the pixels between them through
 // reproject_bilinear's gathers.
 void reproject_bilinear_row(const ReprojectKernel& kernel, int y, RowInts& ints) {
   const int w = kernel.guides.width;
   int* fallback = ints.fallback.data();
   const float* lambda = ints.lambda.data();
-  tap_shifts(kernel, y, ints.dx.data(), ints.dy.data(), ints.moved.data());
+  tap_shifts(kernel, y, ints.dx.data(), ints.dy.data(), ints.moved.data(), ints.reads.data());
   const int room = w / kChunk + 1;
   int count[kWindowKinds] = {};
   int gather_from = 0;  // the first pixel not read yet, nor in a window
@@ -276,12 +316,17 @@ void reproject_bilinear_row(const ReprojectKernel& kernel, int y, RowInts& ints)
     ChunkWindow window;
     const int kind =
         chunk_window(kernel, y, x0, ints.dx.data(), ints.dy.data(), ints.moved.data(), window);
-    if (kind < 0) continue;
-    if (gather_from < x0) reproject_bilinear(kernel, y, gather_from, x0, lambda, fallback);
-    ints.windows[kind * room + count[kind]++] = window;
+    if (kind < 0 && chunk_reads(ints.reads.data(), x0)) continue;
+    if (gather_from < x0)
+      reproject_bilinear(kernel, y, gather_from, x0, lambda, ints.reads.data(), fallback);
+    if (kind < 0)
+      reproject_without_history(kernel, y, x0, x0 + kChunk, lambda, fallback);
+    else
+      ints.windows[kind * room + count[kind]++] = window;
     gather_from = x0 + kChunk;
   }
-  if (gather_from < w) reproject_bilinear(kernel, y, gather_from, w, lambda, fallback);
+  if (gather_from < w)
+    reproject_bilinear(kernel, y, gather_from, w, lambda, ints.reads.data(), fallback);
   const ChunkWindow* windows = ints.windows.data();
   reproject_bilinear_windows<0, false>(kernel, y, windows, count[0], lambda, fallback);
   reproject_bilinear_windows<1, false>(kernel, y, windows + room, count[1], lambda, fallback);

@@ -254,6 +254,12 @@ TEST_CASE("cpu rows: reprojection rows equal the per-pixel kernel under smooth m
       f.motion.plane(0)[i] = -2.3f + slope_x * (x - 64 * band) + 0.011f * y;
       f.motion.plane(1)[i] = 1.7f + slope_y * (x - 64 * band) - 0.015f * y;
       if (u(rng) < 0.002f) f.motion.plane(0)[i] = kNaN;
+      // The edge a pan uncovers: the first rows' first two chunks move from beyond the previous
+      // frame's left edge (neither their taps nor their 3x3 blocks reach it: no history
+      // without a read, kernels_cpu/svgf_reproject_rows.cpp), half of the third from 1.2 to
+      // 2.6 pixels left of it (their taps outside, their blocks reaching column 0 up to 2).
+      if (y < 6 && x < 32) f.motion.plane(0)[i] = -45.f - float(x);
+      if (y < 6 && x >= 32 && x < 40) f.motion.plane(0)[i] = -float(x) - 1.2f - 0.2f * (x - 32);
     }
   const History hist(w, h, 902);
   Image out(w, h, 7), lambda(strata_along(w), strata_along(h), 1);
@@ -272,4 +278,9 @@ TEST_CASE("cpu rows: reprojection rows equal the per-pixel kernel under smooth m
     if (with_lambda) k.previous_depth = {1.004f, -2e-5f, 3e-5f, -0.002f, 1e-5f, 0.f};
     require_rows_equal_pixels(k, std::string("smooth motion") + (with_lambda ? ", lambda" : ""));
   }
+  // A minimum weight of 0: a bilinear read with no consistent tap is then taken, and dropped
+  // (its length 0 / 0), as the rows' pixels beyond the edge are without a read.
+  ReprojectKernel k = kernel_for(f, prev, hist, out);
+  k.params.reproject_min_weight = 0.f;
+  require_rows_equal_pixels(k, "smooth motion, reproject_min_weight 0");
 }
