@@ -228,6 +228,50 @@ SVGF_TAP_LOOP void normal_weight_span(const float* __restrict nx, const float* _
                                                make_vec3(qx[x], qy[x], qz[x]), power);
 }
 
+// The normal terms of the pairs a row starts (AtrousNormalPairs), pairs kFirstDy..2 rows of
+// steps below (0: the row's own pairs dx = 1, 2 too) for pixels x0..x1, whose partners all lie
+// in the image: one pass loading the row's normals once for its 12 pairs, not once a pair
+// (normal_weight_span: the edges' remainders). n: the row's normal planes, offset to it;
+// below[r]: row r + 1 steps below's; out[pair]: the pair's terms (AtrousNormalPairs::started).
+struct NormalPairPlanes {
+  const float* n[3];
+  const float* below[2][3];
+  float* out[12];
+};
+template <int kFirstDy, class Power>
+SVGF_TAP_LOOP void normal_pairs_span(const NormalPairPlanes& planes, int step, int x0, int x1,
+                                     const Power& power) {
+  const float* __restrict nx = planes.n[0];
+  const float* __restrict ny = planes.n[1];
+  const float* __restrict nz = planes.n[2];
+  const float* below[2][3];
+  float* out[12];
+  for (int r = 0; r < 2; ++r)
+    for (int c = 0; c < 3; ++c) below[r][c] = planes.below[r][c];
+  for (int k = 0; k < 12; ++k) out[k] = planes.out[k];
+#pragma GCC ivdep
+  for (int x = x0; x < x1; ++x) {
+    const Vec3 c = make_vec3(nx[x], ny[x], nz[x]);
+    if constexpr (kFirstDy == 0) {
+#pragma GCC unroll 2
+      for (int dx = 1; dx <= 2; ++dx) {
+        const int q = x + dx * step;
+        out[dx - 1][x] = edge_normal_weight<RowExactArith>(c, make_vec3(nx[q], ny[q], nz[q]), power);
+      }
+    }
+#pragma GCC unroll 2
+    for (int dy = kFirstDy < 1 ? 1 : kFirstDy; dy <= 2; ++dy) {
+      const float* const* b = below[dy - 1];
+#pragma GCC unroll 5
+      for (int dx = -2; dx <= 2; ++dx) {
+        const int q = x + dx * step;
+        out[2 + (dy - 1) * 5 + dx + 2][x] =
+            edge_normal_weight<RowExactArith>(c, make_vec3(b[0][q], b[1][q], b[2][q]), power);
+      }
+    }
+  }
+}
+
 // The a-trous normal terms computed once a pair of pixels. A tap's normal term is symmetric to
 // the bit (edge_normal_weight), and a pixel p's tap (dy, dx) has a pixel q whose tap (-dy, -dx)
 // is p: a row computes the terms of the pairs it starts (its taps below it, dy = 1, 2, and
@@ -249,6 +293,29 @@ class AtrousNormalPairs {
   template <class Power>
   void compute(int y, int first_dy, const Power& power) {
     const int w = g_.width, h = g_.height;
+    // Where every pair's partner lies in the image (all of the row's rows below present): one
+    // pass for all; the rest pair by pair.
+    const int inner0 = std::min(w, 2 * step_), inner1 = std::max(inner0, w - 2 * step_);
+    const bool fused = y + 2 * step_ < h && inner0 < inner1;
+    if (fused) {
+      NormalPairPlanes planes{};
+      const size_t at = static_cast<size_t>(y) * w;
+      planes.n[0] = g_.normal.r + at;
+      planes.n[1] = g_.normal.g + at;
+      planes.n[2] = g_.normal.b + at;
+      for (int dy = 1; dy <= 2; ++dy) {
+        const size_t below = static_cast<size_t>(y + dy * step_) * w;
+        planes.below[dy - 1][0] = g_.normal.r + below;
+        planes.below[dy - 1][1] = g_.normal.g + below;
+        planes.below[dy - 1][2] = g_.normal.b + below;
+      }
+      for (int dy = 0; dy <= 2; ++dy)
+        for (int dx = dy == 0 ? 1 : -2; dx <= 2; ++dx)
+          planes.out[dy == 0 ? dx - 1 : 2 + (dy - 1) * 5 + dx + 2] = started(y, dy, dx);
+      if (first_dy == 0) normal_pairs_span<0>(planes, step_, inner0, inner1, power);
+      else if (first_dy == 1) normal_pairs_span<1>(planes, step_, inner0, inner1, power);
+      else normal_pairs_span<2>(planes, step_, inner0, inner1, power);
+    }
     for (int dy = first_dy; dy <= 2; ++dy) {
       const int yq = y + dy * step_;
       if (yq >= h) break;
@@ -256,13 +323,26 @@ class AtrousNormalPairs {
         const int shift = dx * step_;
         const int x0 = std::max(0, -shift), x1 = std::min(w, w - shift);
         if (x0 >= x1) continue;
-        const size_t at = static_cast<size_t>(y) * w + x0;
-        const size_t q = static_cast<size_t>(yq) * w + x0 + shift;
-        normal_weight_span(g_.normal.r + at, g_.normal.g + at, g_.normal.b + at,
-                           g_.normal.r + q, g_.normal.g + q, g_.normal.b + q,
-                           started(y, dy, dx) + x0, x1 - x0, power);
+        if (fused) {  // the remainders at either end
+          span(y, yq, dy, dx, x0, inner0, power);
+          span(y, yq, dy, dx, inner1, x1, power);
+          continue;
+        }
+        span(y, yq, dy, dx, x0, x1, power);
       }
     }
+  }
+
+  // Pair (dy, dx)'s terms of row y (its partner row yq) for pixels x0..x1.
+  template <class Power>
+  void span(int y, int yq, int dy, int dx, int x0, int x1, const Power& power) {
+    if (x0 >= x1) return;
+    const int w = g_.width, shift = dx * step_;
+    const size_t at = static_cast<size_t>(y) * w + x0;
+    const size_t q = static_cast<size_t>(yq) * w + x0 + shift;
+    normal_weight_span(g_.normal.r + at, g_.normal.g + at, g_.normal.b + at, g_.normal.r + q,
+                       g_.normal.g + q, g_.normal.b + q, started(y, dy, dx) + x0, x1 - x0,
+                       power);
   }
 
   // What pixel x of row y reads at [x] for its tap (dy, dx) (not the centre): the term its pair
