@@ -126,12 +126,10 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
       indirect.emission = {};  // the emission is part of direct
     }
     if (packs_guides()) {
-      // Written this frame (the next one's previous guides where they have two slots).
-      const int next = packed_guide_slots() == 2 ? 1 - slot_ : 0;
-      b.packed_guides = indirect.packed_guides = backend_.plane(packed_guides_[next], 0);
+      b.packed_guides = indirect.packed_guides = backend_.plane(written_packed_guides(), 0);
       if (kGuideHistory)
         b.prev_packed_guides = indirect.prev_packed_guides =
-            backend_.plane(packed_guides_[slot_], 0);
+            backend_.plane(previous_packed_guides(), 0);
     }
 #if defined(__CUDACC__)
     if (mode_ == Mode::Fast) {
@@ -185,6 +183,14 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
   // one the sharing is tested against: planes of their own there.
   static constexpr bool kGuideHistory = Backend::kPackedStorage;
   int packed_guide_slots() const { return kGuideHistory ? 2 : 1; }
+  // The packed guides this frame writes (the next frame's previous guides where there are two
+  // slots), and those the previous frame wrote (two slots only), whose planes the scratch in the
+  // history reuses: the a-trous buffer 0 in the previous slot, the gradient samples and the
+  // stratum image in the written one before the first kernel writes it (scratch_in_history).
+  typename Backend::Buffer& written_packed_guides() {
+    return packed_guides_[packed_guide_slots() == 2 ? 1 - slot_ : 0];
+  }
+  typename Backend::Buffer& previous_packed_guides() { return packed_guides_[slot_]; }
   float* normals_planes() {
     if constexpr (kGuideHistory) {
       return normals_.empty() ? backend_.plane(signal_[1], 0) : backend_.plane(normals_, 0);
@@ -292,7 +298,7 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
       b.accumulated = {RgbView(), backend_.plane(acc, 0)};
     // The a-trous ping-pong; with the scratch in the history, buffer 0 is the previous frame's
     // packed guides, which nothing reads after the reprojection.
-    b.signal[0] = scratch_in_history() ? backend_.plane(packed_guides_[prev], 0)
+    b.signal[0] = scratch_in_history() ? backend_.plane(previous_packed_guides(), 0)
                                        : backend_.plane(signal_[0], 0);
     b.signal[1] = backend_.plane(signal_[1], 0);
     b.output = output;
@@ -364,7 +370,7 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
   // illumination's planes, both written only after the gradient stages have read them
   // (run_svgf_frame, methods/svgf/pipeline.h).
   float* gradient_samples_planes() {
-    return scratch_in_history() ? backend_.plane(packed_guides_[1 - slot_], 0)
+    return scratch_in_history() ? backend_.plane(written_packed_guides(), 0)
                                 : illumination_planes().r;
   }
 
@@ -377,7 +383,7 @@ class SvgfDenoiser final : public DenoiserOver<SvgfDenoiser<Backend>, Backend> {
     } else if (strata_shared_) {
       b.strata = backend_.plane(signal_[0], 3);
     } else {
-      b.strata = backend_.plane(packed_guides_[1 - slot_], 3);
+      b.strata = backend_.plane(written_packed_guides(), 3);
       b.lambda = backend_.plane(signal_[1], 3);
     }
   }
