@@ -233,6 +233,12 @@ SVGF_TAP_LOOP void normal_weight_span(const float* __restrict nx, const float* _
 // in the image: one pass loading the row's normals once for its 12 pairs, not once a pair
 // (normal_weight_span: the edges' remainders). n: the row's normal planes, offset to it;
 // below[r]: row r + 1 steps below's; out[pair]: the pair's terms (AtrousNormalPairs::started).
+// Where pair (dy, dx) of the 12 a row starts lies among them: dy = 0 with dx = 1, 2 first,
+// then dy = 1 and 2 with dx = -2..2.
+constexpr int atrous_pair_index(int dy, int dx) {
+  return dy == 0 ? dx - 1 : 2 + (dy - 1) * 5 + (dx + 2);
+}
+
 struct NormalPairPlanes {
   const float* n[3];
   const float* below[2][3];
@@ -256,7 +262,8 @@ SVGF_TAP_LOOP void normal_pairs_span(const NormalPairPlanes& planes, int step, i
 #pragma GCC unroll 2
       for (int dx = 1; dx <= 2; ++dx) {
         const int q = x + dx * step;
-        out[dx - 1][x] = edge_normal_weight<RowExactArith>(c, make_vec3(nx[q], ny[q], nz[q]), power);
+        out[atrous_pair_index(0, dx)][x] =
+            edge_normal_weight<RowExactArith>(c, make_vec3(nx[q], ny[q], nz[q]), power);
       }
     }
 #pragma GCC unroll 2
@@ -265,7 +272,7 @@ SVGF_TAP_LOOP void normal_pairs_span(const NormalPairPlanes& planes, int step, i
 #pragma GCC unroll 5
       for (int dx = -2; dx <= 2; ++dx) {
         const int q = x + dx * step;
-        out[2 + (dy - 1) * 5 + dx + 2][x] =
+        out[atrous_pair_index(dy, dx)][x] =
             edge_normal_weight<RowExactArith>(c, make_vec3(b[0][q], b[1][q], b[2][q]), power);
       }
     }
@@ -311,7 +318,7 @@ class AtrousNormalPairs {
       }
       for (int dy = 0; dy <= 2; ++dy)
         for (int dx = dy == 0 ? 1 : -2; dx <= 2; ++dx)
-          planes.out[dy == 0 ? dx - 1 : 2 + (dy - 1) * 5 + dx + 2] = started(y, dy, dx);
+          planes.out[atrous_pair_index(dy, dx)] = started(y, dy, dx);
       if (first_dy == 0) normal_pairs_span<0>(planes, step_, inner0, inner1, power);
       else if (first_dy == 1) normal_pairs_span<1>(planes, step_, inner0, inner1, power);
       else normal_pairs_span<2>(planes, step_, inner0, inner1, power);
@@ -358,9 +365,9 @@ class AtrousNormalPairs {
   // The terms of the pairs row y starts with its tap (dy, dx), indexed by x (padded by two steps
   // on either side, so that tap()'s offset stays inside the buffer).
   float* started(int y, int dy, int dx) {
-    const int pair = dy == 0 ? dx - 1 : 2 + (dy - 1) * 5 + (dx + 2);
     const int slot = (y / step_) % kSlots;
-    return values_.data() + (static_cast<size_t>(slot) * kPairs + pair) * stride_ + pad_;
+    return values_.data() +
+           (static_cast<size_t>(slot) * kPairs + atrous_pair_index(dy, dx)) * stride_ + pad_;
   }
 
   GuideView g_;
