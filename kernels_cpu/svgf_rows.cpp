@@ -4,6 +4,8 @@
 #include <type_traits>
 #include <vector>
 
+#include <tbb/task_arena.h>
+
 #include "kernels_cpu/row_tools.h"
 
 namespace svgf::cpu {
@@ -43,12 +45,13 @@ inline void keep_scalar() { asm volatile("" ::: "memory"); }
 // 16 pixels at the default 4 iterations, too few for one 16-lane vector, so the caller widens
 // the loop to a vector's worth (as single-tap loops the border pixels were scalar code, 2% of
 // a frame). kSharedNormals: tap t's normal term is shared[t][x] (AtrousNormalPairs), not
-// computed from the tap's normal, which is then not read.
+// computed from the tap's normal, which is then not read. lum_row: the luminances around the
+// row, pixel x's at lum_row[x] (tap j's at lum_row[j - row]: a band's rows, run_atrous_rows).
 template <class Power, bool kCentreRow, TapColumns kColumns = TapColumns::kInterior,
           bool kSharedNormals = false>
 SVGF_TAP_LOOP void atrous_tap_row(const float* __restrict depth, const float* __restrict nx,
                                   const float* __restrict ny, const float* __restrict nz,
-                                  const float* __restrict lum, const float* __restrict cr,
+                                  const float* __restrict lum_row, const float* __restrict cr,
                                   const float* __restrict cg, const float* __restrict cb,
                                   const float* __restrict var_in,
                                   const float* __restrict inv_phi_z,
@@ -68,7 +71,7 @@ SVGF_TAP_LOOP void atrous_tap_row(const float* __restrict depth, const float* __
   for (int x = x0; x < x1; ++x) {
     if constexpr (kClamp) keep_scalar();
     const int i = row + x;
-    const EdgeSample c{depth[i], make_vec3(nx[i], ny[i], nz[i]), lum[i]};
+    const EdgeSample c{depth[i], make_vec3(nx[i], ny[i], nz[i]), lum_row[x]};
     const float ipz = inv_phi_z[x], ipl = inv_phi_l[x];
     const bool active = !kTests || ((x >= active0) & (x < active1));
     float w_sum = sw[x], r_sum = sr[x], g_sum = sg[x], b_sum = sb[x], v_sum = sv[x];
@@ -85,7 +88,7 @@ SVGF_TAP_LOOP void atrous_tap_row(const float* __restrict depth, const float* __
       else
         w_normal = edge_normal_weight<RowExactArith>(c.normal, make_vec3(nx[j], ny[j], nz[j]),
                                                      power);
-      const EdgeSample q{depth[j], Vec3{}, lum[j]};  // its normal is in w_normal
+      const EdgeSample q{depth[j], Vec3{}, lum_row[j - row]};  // its normal is in w_normal
       const float wt =
           edge_stopping_weight_given_normal<RowExactArith>(c, q, ipz * d[t], w_normal, ipl) *
           k[t];
@@ -377,7 +380,7 @@ class AtrousNormalPairs {
 };
 
 template <class Power>
-void atrous_row(const AtrousKernel& k, const float* __restrict lum, int y, RowScratch& s,
+void atrous_row(const AtrousKernel& k, const float* __restrict lum_row, int y, RowScratch& s,
                 const Power& power, AtrousNormalPairs& pairs) {
   const GuideView& g = k.guides;
   const SvgfParams& p = k.params;
@@ -430,8 +433,9 @@ void atrous_row(const AtrousKernel& k, const float* __restrict lum, int y, RowSc
       const auto call = [&](auto columns, int x0, int x1, int active0, int active1) {
         constexpr TapColumns kColumns = decltype(columns)::value;
         atrous_tap_row<Power, kCentre, kColumns, kColumns == TapColumns::kInterior>(
-            depth, nx, ny, nz, lum, cr, cg, cb, var_in, inv_phi_z, inv_phi_l, sw, sr, sg, sb, sv,
-            row, row_offset, k.step, x0, x1, active0, active1, w, inv_dist, kw, power, shared);
+            depth, nx, ny, nz, lum_row, cr, cg, cb, var_in, inv_phi_z, inv_phi_l, sw, sr, sg, sb,
+            sv, row, row_offset, k.step, x0, x1, active0, active1, w, inv_dist, kw, power,
+            shared);
       };
       using Interior = std::integral_constant<TapColumns, TapColumns::kInterior>;
       using Border = std::integral_constant<TapColumns, TapColumns::kBorder>;
@@ -662,18 +666,56 @@ UninitializedPlane<float> luminance_plane(ConstRgbView color, int w, int h) {
   return lum;
 }
 
+// The luminances an a-trous band reads: of rows first..last - 1 of the iteration's input (the
+// band's and those two steps above and below it, inside the image), computed by the band
+// itself. A pass over the frame writing a luminance plane and reading it back took 0.4 ms of an
+// iteration's 8 (camera-pan 720p, 2 threads, Zen 5 VM) and a barrier; a band's rows and their
+// taps' rows are in its cache when its taps read them. Padded by two steps on either side: a
+// border tap row's loads reach that far past the rows (kBorder; not taken).
+class BandLuminance {
+ public:
+  // For bands of up to `rows` rows.
+  BandLuminance(int width, int rows, int step)
+      : w_(width), pad_(2 * step),
+        values_(static_cast<size_t>(rows + 4 * step) * width + 2 * pad_) {}
+
+  void compute(ConstRgbView color, int first, int last) {
+    first_ = first;
+    const size_t n = static_cast<size_t>(last - first) * w_;
+    const size_t at = static_cast<size_t>(first) * w_;
+    float* values = values_.data();
+    std::fill_n(values, pad_, 0.f);
+    luminance_span(color.r + at, color.g + at, color.b + at, values + pad_, static_cast<int>(n));
+    std::fill_n(values + pad_ + n, pad_, 0.f);
+  }
+  // Row y's luminances: pixel x's at [x].
+  const float* row(int y) const {
+    return values_.data() + pad_ + static_cast<size_t>(y - first_) * w_;
+  }
+
+ private:
+  int w_;
+  size_t pad_;
+  int first_ = 0;
+  UninitializedPlane<float> values_;
+};
+
 }  // namespace
 
 // The rows of an iteration run in bands of whole chains (AtrousNormalPairs): a band's rows y0..
 // as the chains y0 + r, y0 + r + step, ... for r < step, each chain starting from the terms
 // of the two rows above it, computed first. Bands of at least 8 rows a chain keep those extra
 // rows to a quarter of a row's normal terms a chain row or less; any partition gives the same
-// bits (a term is the same value whichever row computes it).
+// bits (a term is the same value whichever row computes it). The bands are made as many as a
+// multiple of the threads, of equal heights: 720 rows in 11 bands of 64 and one of 16 kept
+// one of 2 threads waiting 3 to 6% of an iteration (Zen 5 VM), in 12 of 60 about 2%.
 void run_atrous_rows(const AtrousKernel& kernel, int width, int height) {
-  const UninitializedPlane<float> lum = luminance_plane(kernel.in.color, width, height);
   const int step = kernel.step;
-  const int band = std::max(64, 8 * step);
-  const int bands = (height + band - 1) / band;
+  const int threads = std::max(1, tbb::this_task_arena::max_concurrency());
+  int bands = (height + std::max(64, 8 * step) - 1) / std::max(64, 8 * step);
+  bands = std::min(height, (bands + threads - 1) / threads * threads);
+  const int band = (height + bands - 1) / bands;
+  bands = (height + band - 1) / band;
   with_normal_power(kernel.params.phi_normal, [&](const auto& power) {
     tbb::parallel_for(
         tbb::blocked_range<int>(0, bands, 1),
@@ -681,14 +723,17 @@ void run_atrous_rows(const AtrousKernel& kernel, int width, int height) {
           ScopedIeeeFloat ieee;
           RowScratch s(7, width);
           AtrousNormalPairs pairs(kernel.guides, step);
+          BandLuminance lum(width, band, step);
           for (int b = r.begin(); b != r.end(); ++b) {
             const int y0 = b * band, y1 = std::min(height, y0 + band);
+            lum.compute(kernel.in.color, std::max(0, y0 - 2 * step),
+                        std::min(height, y1 + 2 * step));
             for (int first = y0; first < std::min(y1, y0 + step); ++first) {
               if (first - 2 * step >= 0) pairs.compute(first - 2 * step, 2, power);
               if (first - step >= 0) pairs.compute(first - step, 1, power);
               for (int y = first; y < y1; y += step) {
                 pairs.compute(y, 0, power);
-                atrous_row(kernel, lum.data(), y, s, power, pairs);
+                atrous_row(kernel, lum.row(y), y, s, power, pairs);
               }
             }
           }
