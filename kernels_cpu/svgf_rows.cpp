@@ -710,6 +710,7 @@ class BandLuminance {
 // multiple of the threads, of equal heights: 720 rows in 11 bands of 64 and one of 16 kept
 // one of 2 threads waiting 3 to 6% of an iteration (Zen 5 VM), in 12 of 60 about 2%.
 void run_atrous_rows(const AtrousKernel& kernel, int width, int height) {
+  if (width <= 0 || height <= 0) return;  // no rows (and no bands to divide them into)
   const int step = kernel.step;
   const int threads = std::max(1, tbb::this_task_arena::max_concurrency());
   int bands = (height + std::max(64, 8 * step) - 1) / std::max(64, 8 * step);
