@@ -713,7 +713,8 @@ void run_atrous_rows(const AtrousKernel& kernel, int width, int height) {
   if (width <= 0 || height <= 0) return;  // no rows (and no bands to divide them into)
   const int step = kernel.step;
   const int threads = std::max(1, tbb::this_task_arena::max_concurrency());
-  int bands = (height + std::max(64, 8 * step) - 1) / std::max(64, 8 * step);
+  const int tallest = std::max(64, 8 * step);  // the bands' height before they are evened
+  int bands = (height + tallest - 1) / tallest;
   bands = std::min(height, (bands + threads - 1) / threads * threads);
   const int band = (height + bands - 1) / bands;
   bands = (height + band - 1) / band;
