@@ -21,6 +21,7 @@
 #include "bench/chart_data.h"
 #include "bench/eval_quality.h"
 #include "bench/gpu_probe.h"
+#include "bench/atrous_probe.h"
 #include "bench/host_probe.h"
 #include "bench/runner.h"
 #include "bench/stability.h"
@@ -172,6 +173,7 @@ int run_command(const RunArgs& a) {
     const int t = c.resolved_threads();
     ceilings.copy_gbs = host_copy_gbs(t);
     ceilings.ops_per_s = host_float_ops_per_s(t);
+    ceilings.resident_atrous_ns_per_tap = resident_atrous_ns_per_tap(t);
     ceilings.copy_what = "memcpy of 256 MiB on " + std::to_string(t) + " thread(s)";
   }
   json entry = time_run(c, frames, a.timing, ceilings);

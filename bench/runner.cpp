@@ -224,7 +224,8 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
   j["frame_mpix_per_s"] = filter.median > 0 ? pixels / (filter.median * 1e3) : 0.0;
   j["ceilings"] = {{"copy_gbs", ceilings.copy_gbs},
                    {"ops_per_s", ceilings.ops_per_s},
-                   {"copy_what", ceilings.copy_what}};
+                   {"copy_what", ceilings.copy_what},
+                   {"resident_atrous_ns_per_tap", ceilings.resident_atrous_ns_per_tap}};
 
   json stages = json::array();
   std::vector<std::string> costed_stages;
@@ -495,6 +496,16 @@ void print_timing(const json& e, std::FILE* f) {
                    s["stage"].get<std::string>().c_str(), s["taps_per_px"].get<double>(),
                    s["per_tap"]["ns"].get<double>(), s["per_tap"]["taps_per_s"].get<double>() / 1e9,
                    s["per_tap"]["ops"].get<double>(), s["pct_of_ops"].get<double>());
+  // SVGF's CPU a-trous beside the same rows on a frame in the caches: how much of a tap's time
+  // the frame's memory adds (1.0: none; the rest is the cores').
+  const double resident = e["ceilings"].value("resident_atrous_ns_per_tap", 0.0);
+  for (const json& s : e["stages"])
+    if (resident > 0 && s["stage"] == "atrous" && s.contains("per_tap") &&
+        e["description"].get<std::string>().rfind("svgf cpu exact", 0) == 0)
+      std::fprintf(f,
+                   "  %-15s in the caches (1280x64, steps 1 and 2): %.4f ns a tap; the frame's "
+                   "take %.2f times as long\n",
+                   "atrous", resident, s["per_tap"]["ns"].get<double>() / resident);
   if (e.contains("peak_device_bytes"))
     std::fprintf(f, "  peak device memory %.1f MiB\n",
                  static_cast<double>(e["peak_device_bytes"].get<size_t>()) / (1 << 20));

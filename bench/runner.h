@@ -17,6 +17,9 @@ struct Ceilings {
   double copy_gbs = 0;    // bytes read + written per second of a large copy
   double ops_per_s = 0;   // floating-point operations per second; 0: unknown
   std::string copy_what;  // how copy_gbs was measured
+  // The CPU's exact a-trous on a frame in the caches, ns a tap (bench/atrous_probe.h); 0: not
+  // measured (a GPU run, --no-ceilings).
+  double resident_atrous_ns_per_tap = 0;
 };
 
 struct TimingOptions {

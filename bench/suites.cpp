@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "bench/gpu_probe.h"
+#include "bench/atrous_probe.h"
 #include "bench/host_probe.h"
 #include "io/atomic_file.h"
 
@@ -304,8 +305,12 @@ int run_cpu_suite(const SuiteOptions& o, SuiteWriter& w) {
     Ceilings c;
     c.copy_gbs = host_copy_gbs(t);
     c.ops_per_s = host_float_ops_per_s(t);
+    c.resident_atrous_ns_per_tap = resident_atrous_ns_per_tap(t);
     c.copy_what = "memcpy of 256 MiB on " + std::to_string(t) + " thread(s)";
-    w.doc()["ceilings"][std::to_string(t)] = {{"copy_gbs", c.copy_gbs}, {"ops_per_s", c.ops_per_s}};
+    w.doc()["ceilings"][std::to_string(t)] = {
+        {"copy_gbs", c.copy_gbs},
+        {"ops_per_s", c.ops_per_s},
+        {"resident_atrous_ns_per_tap", c.resident_atrous_ns_per_tap}};
     w.save();
     std::printf("host ceilings, %d thread(s): copy %.1f GB/s, float ops %.2f G/s\n", t, c.copy_gbs,
                 c.ops_per_s / 1e9);
