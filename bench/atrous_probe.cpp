@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "kernels_cpu/cpu_variant.h"
+#include "kernels_cpu/svgf_rows.h"
 #include "methods/svgf/atrous.h"
 
 namespace svgf::bench {
@@ -54,7 +55,7 @@ double resident_atrous_ns_per_tap(int threads) {
       for (int it = 0; it < kIterations; ++it) {
         const int in = it % 2;  // ping-pong, as the frame's iterations
         atrous_rows(AtrousKernel{guides, view(in), view(1 - in), 1 << (it % 2), SvgfParams{}},
-                    kWidth, kHeight);
+                    kWidth, kHeight, cpu::AtrousRowOutputs{});
       }
     });
     const double s =

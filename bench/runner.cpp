@@ -105,6 +105,7 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
   traits.width = fs.width;
   traits.height = fs.height;
   traits.packed_exact = cuda;  // the CUDA engine's exact mode filters packed pixels
+  traits.fused_outputs = true;  // both engines' (methods/svgf/flavors.h)
 
   const size_t mem_before = cuda ? device_used_bytes() : 0;
   size_t mem_peak = 0;

@@ -372,29 +372,31 @@ StageCost fused_reprojection_cost(const SvgfParams& p, const FrameTraits& f, boo
   return plus(c, antilag_extra(p, f, surface, true));
 }
 
-// The a-trous iterations when the feedback copy and the remodulation ride on them (fast mode,
-// and CUDA's exact mode: kFusedOutputs in methods/svgf/flavors.h): the last iteration reads
-// albedo (+ emission) and writes the output 3 instead of a packed pixel 4; the feedback tap's
-// iteration also writes the color history 3.
+// The a-trous iterations when the feedback copy and the remodulation ride on them (kFusedOutputs
+// in methods/svgf/flavors.h: fast mode, and exact mode on both engines): the last iteration
+// reads albedo (+ emission) and writes the output 3 instead of the signal's 4 (a packed pixel
+// or color + variance planes); the feedback tap's iteration also writes the color history 3.
 StageCost with_fused_outputs(StageCost c, const SvgfParams& p, bool emission) {
   if (p.iterations <= 0) return c;
   c.read += (3 + (emission ? 3 : 0)) * kFloat;
   c.written += (-4 + 3 + (p.feeds_back_iteration() ? 3 : 0)) * kFloat;
   c.ops += kRemodulate + (emission ? 3 : 0);
-  c.planes += "; last R albedo 3 (+ emission 3), W output 3 (not packed 4); tap W history 3";
+  c.planes += "; last R albedo 3 (+ emission 3), W output 3 (not the signal's 4); tap W history 3";
   return c;
 }
 
 // The remodulation as a pass of its own where nothing else does it: no iteration. (Without a
 // feedback tap in range no pass copies the history either: the reprojection accumulates into
-// it, methods/svgf/pipeline.h.)
-StageCost unfused_output_cost(Stage stage, const SvgfParams& p, bool emission) {
+// it, methods/svgf/pipeline.h.) `packed`: it reads the signal's packed pixel (4 floats), not
+// its color planes (3).
+StageCost unfused_output_cost(Stage stage, const SvgfParams& p, bool emission, bool packed) {
   StageCost c;
   if (stage == Stage::Remodulate && p.iterations <= 0) {
-    c.read = (4 + 3 + (emission ? 3 : 0)) * kFloat;
+    c.read = ((packed ? 4 : 3) + 3 + (emission ? 3 : 0)) * kFloat;
     c.written = 3 * kFloat;
     c.ops = kRemodulate + (emission ? 3 : 0);
-    c.planes = "R packed 4, albedo 3, emission 3 (if any); W output 3";
+    c.planes = packed ? "R packed 4, albedo 3, emission 3 (if any); W output 3"
+                      : "R color 3, albedo 3, emission 3 (if any); W output 3";
   }
   return c;
 }
@@ -402,6 +404,7 @@ StageCost unfused_output_cost(Stage stage, const SvgfParams& p, bool emission) {
 StageCost exact_cost(Stage stage, const SvgfParams& p, const FrameTraits& f, bool surface) {
   const bool emission = f.emission;
   const bool packed = f.packed_exact;
+  const bool fused_outputs = packed || f.fused_outputs;
   const double e = emission ? 3 : 0;  // emission planes, when the frames have them
   StageCost c;
   switch (stage) {
@@ -457,17 +460,18 @@ StageCost exact_cost(Stage stage, const SvgfParams& p, const FrameTraits& f, boo
                           "packed, packed guides); W packed 4"
                         : "per iteration R color + variance 4, depth 1, depth dx/dy 2, normal 3 "
                           "(background: color + variance, depth); W color + variance 4";
-      // Packed (CUDA), the feedback copy and the remodulation ride on the iterations.
-      if (packed) c = with_fused_outputs(c, p, emission);
+      // The feedback copy and the remodulation riding on the iterations (both engines).
+      if (fused_outputs) c = with_fused_outputs(c, p, emission);
       break;
     case Stage::Feedback:  // a copy of the tap's output; none without a tap in range
-      if (packed || !p.feeds_back_iteration()) return unfused_output_cost(stage, p, emission);
+      if (fused_outputs || !p.feeds_back_iteration())
+        return unfused_output_cost(stage, p, emission, packed);
       c.read = 3 * kFloat;
       c.written = 3 * kFloat;
       c.planes = "R color 3; W color history 3";
       break;
     case Stage::Remodulate:
-      if (packed) return unfused_output_cost(stage, p, emission);
+      if (fused_outputs) return unfused_output_cost(stage, p, emission, packed);
       c.read = (3 + 3 + e) * kFloat;  // filtered illumination, albedo, emission
       c.written = 3 * kFloat;
       c.ops = kRemodulate + (emission ? 3 : 0);
@@ -513,7 +517,7 @@ StageCost fast_cost(Stage stage, const SvgfParams& p, const FrameTraits& f, bool
       break;
     case Stage::Feedback:    // rides on the tap's iteration, if any
     case Stage::Remodulate:  // rides on the last iteration, if any
-      return unfused_output_cost(stage, p, emission);
+      return unfused_output_cost(stage, p, emission, true);
     default:
       break;
   }

@@ -86,6 +86,11 @@ struct FrameTraits {
   // SvgfExactPacked): demodulate + reproject + guide packing in one kernel, the filter reads
   // packed pixels, the feedback copy and the remodulation ride on the a-trous iterations.
   bool packed_exact = false;
+  // The feedback copy and the remodulation ride on the a-trous iterations whose results they
+  // are (methods/svgf/flavors.h, kFusedOutputs), as every engine runs SVGF: the runner sets it.
+  // Without it (and without packed_exact, which implies it) they are counted as the passes of
+  // their own that the stage kernels are (tests/bench_stage_cost_test.cpp compares those).
+  bool fused_outputs = false;
 };
 
 // Cost of `stage` in one frame, all a-trous iterations together for Stage::Atrous and

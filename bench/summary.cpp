@@ -600,6 +600,7 @@ std::string summary_markdown(const Results& r, const std::vector<Point>& pts,
       f.emission = true;
       f.surface_fraction = surface;
       f.packed_exact = packed;
+      f.fused_outputs = true;  // as both engines run SVGF (methods/svgf/flavors.h)
       return f;
     };
     for (int si = 0; si < kStageCount; ++si) {

@@ -156,8 +156,9 @@ std::unique_ptr<Denoiser> make_jbf_denoiser(const JbfParams& params, const Engin
 std::unique_ptr<Denoiser> make_bmfr_denoiser(const BmfrParams& params, const EngineConfig& config) {
   return pick_variant(config.cpu_isa).make_bmfr(params, config);
 }
-void run_atrous_rows(const AtrousKernel& kernel, int width, int height) {
-  pick_variant("").atrous_rows(kernel, width, height);
+void run_atrous_rows(const AtrousKernel& kernel, int width, int height,
+                     const AtrousRowOutputs& outputs) {
+  pick_variant("").atrous_rows(kernel, width, height, outputs);
 }
 void run_variance_rows(const VarianceKernel& kernel, int width, int height) {
   pick_variant("").variance_rows(kernel, width, height);

@@ -25,6 +25,8 @@
 
 namespace svgf::cpu {
 
+struct AtrousRowOutputs;  // kernels_cpu/svgf_rows.h
+
 // One variant's entry points (kernels_cpu/variant_entry.cpp): what the rest of the program may
 // call in it.
 struct CpuVariant {
@@ -38,7 +40,7 @@ struct CpuVariant {
   std::unique_ptr<Denoiser> (*make_wavelet)(const WaveletParams&, const EngineConfig&);
   std::unique_ptr<Denoiser> (*make_jbf)(const JbfParams&, const EngineConfig&);
   std::unique_ptr<Denoiser> (*make_bmfr)(const BmfrParams&, const EngineConfig&);
-  void (*atrous_rows)(const AtrousKernel&, int, int);
+  void (*atrous_rows)(const AtrousKernel&, int, int, const AtrousRowOutputs&);
   void (*variance_rows)(const VarianceKernel&, int, int);
   void (*reproject_rows)(const ReprojectKernel&, int, int);
   void (*gradient_samples_rows)(const GradientSamplesKernel&, int, int);

@@ -218,6 +218,41 @@ SVGF_TAP_LOOP void atrous_normalize(const float* __restrict depth, const float* 
   }
 }
 
+// n results remodulated into the output planes o*: RemodulateSink's remodulated(), the same
+// function, by albedo a* and emission e* (none without kEmission: zero, as load_or_zero gives).
+// Restrict, like the tap loops (vectorized).
+template <bool kEmission>
+SVGF_TAP_LOOP void remodulate_span(const float* __restrict r, const float* __restrict g,
+                                   const float* __restrict b, const float* __restrict ar,
+                                   const float* __restrict ag, const float* __restrict ab,
+                                   const float* __restrict er, const float* __restrict eg,
+                                   const float* __restrict eb, float* __restrict o_r,
+                                   float* __restrict o_g, float* __restrict o_b, int n,
+                                   float albedo_epsilon) {
+  for (int x = 0; x < n; ++x) {
+    const Vec3 emission = kEmission ? make_vec3(er[x], eg[x], eb[x]) : Vec3();
+    const Vec3 o = remodulated(make_vec3(r[x], g[x], b[x]), make_vec3(ar[x], ag[x], ab[x]),
+                               emission, albedo_epsilon);
+    o_r[x] = o.x;
+    o_g[x] = o.y;
+    o_b[x] = o.z;
+  }
+}
+
+// Row `row` (its first index) of results r, g, b into the sink, as RemodulateSink::store.
+void remodulate_row(const RemodulateSink& sink, const float* r, const float* g, const float* b,
+                    int row, int w) {
+  const ConstRgbView& a = sink.albedo;
+  const ConstRgbView& e = sink.emission;
+  const RgbView& o = sink.output;
+  if (e.r)
+    remodulate_span<true>(r, g, b, a.r + row, a.g + row, a.b + row, e.r + row, e.g + row,
+                          e.b + row, o.r + row, o.g + row, o.b + row, w, sink.albedo_epsilon);
+  else
+    remodulate_span<false>(r, g, b, a.r + row, a.g + row, a.b + row, nullptr, nullptr, nullptr,
+                           o.r + row, o.g + row, o.b + row, w, sink.albedo_epsilon);
+}
+
 // The normal terms of n pixels (normals n*) with the pixels at the same index of q* (their
 // partners, offset by the caller): out[x] = edge_normal_weight(n[x], q[x]). Restrict, like the
 // tap loops (vectorized).
@@ -379,9 +414,14 @@ class AtrousNormalPairs {
   std::vector<float> values_;
 };
 
+// Row scratch of an a-trous row: 7 for its terms and sums, 4 for a result that is not stored in
+// the output signal (AtrousRowOutputs::remodulate).
+constexpr int kAtrousScratch = 11;
+
 template <class Power>
-void atrous_row(const AtrousKernel& k, const float* __restrict lum_row, int y, RowScratch& s,
-                const Power& power, AtrousNormalPairs& pairs) {
+void atrous_row(const AtrousKernel& k, const AtrousRowOutputs& outputs,
+                const float* __restrict lum_row, int y, RowScratch& s, const Power& power,
+                AtrousNormalPairs& pairs) {
   const GuideView& g = k.guides;
   const SvgfParams& p = k.params;
   const int w = g.width, h = g.height, row = y * w;
@@ -461,9 +501,22 @@ void atrous_row(const AtrousKernel& k, const float* __restrict lum_row, int y, R
     else
       tap_rows(std::false_type{});
   }
+  // The result: into the output signal, or into scratch for the remodulation (its variance
+  // then goes nowhere, as RemodulateSink stores the color alone); the feedback tap's color
+  // copied into the history.
+  const bool remodulate = outputs.remodulate != nullptr;
+  float* out_r = remodulate ? s[7] : k.out.color.r + row;
+  float* out_g = remodulate ? s[8] : k.out.color.g + row;
+  float* out_b = remodulate ? s[9] : k.out.color.b + row;
+  float* out_v = remodulate ? s[10] : k.out.variance + row;
   atrous_normalize(g.depth + row, k.in.color.r + row, k.in.color.g + row, k.in.color.b + row,
-                   var_in + row, sw, sr, sg, sb, sv, k.out.color.r + row, k.out.color.g + row,
-                   k.out.color.b + row, k.out.variance + row, w);
+                   var_in + row, sw, sr, sg, sb, sv, out_r, out_g, out_b, out_v, w);
+  if (const RgbView& history = outputs.color_history; history.r) {
+    std::copy(out_r, out_r + w, history.r + row);
+    std::copy(out_g, out_g + w, history.g + row);
+    std::copy(out_b, out_b + w, history.b + row);
+  }
+  if (remodulate) remodulate_row(*outputs.remodulate, out_r, out_g, out_b, row, w);
 }
 
 // --- spatial variance estimate -----------------------------------------------------------------
@@ -709,7 +762,8 @@ class BandLuminance {
 // bits (a term is the same value whichever row computes it). The bands are made as many as a
 // multiple of the threads, of equal heights: 720 rows in 11 bands of 64 and one of 16 kept
 // one of 2 threads waiting 3 to 6% of an iteration (Zen 5 VM), in 12 of 60 about 2%.
-void run_atrous_rows(const AtrousKernel& kernel, int width, int height) {
+void run_atrous_rows(const AtrousKernel& kernel, int width, int height,
+                     const AtrousRowOutputs& outputs) {
   if (width <= 0 || height <= 0) return;  // no rows (and no bands to divide them into)
   const int step = kernel.step;
   const int threads = std::max(1, tbb::this_task_arena::max_concurrency());
@@ -723,7 +777,7 @@ void run_atrous_rows(const AtrousKernel& kernel, int width, int height) {
         tbb::blocked_range<int>(0, bands, 1),
         [&](const tbb::blocked_range<int>& r) {
           ScopedIeeeFloat ieee;
-          RowScratch s(7, width);
+          RowScratch s(kAtrousScratch, width);
           AtrousNormalPairs pairs(kernel.guides, step);
           BandLuminance lum(width, band, step);
           for (int b = r.begin(); b != r.end(); ++b) {
@@ -735,7 +789,7 @@ void run_atrous_rows(const AtrousKernel& kernel, int width, int height) {
               if (first - step >= 0) pairs.compute(first - step, 1, power);
               for (int y = first; y < y1; y += step) {
                 pairs.compute(y, 0, power);
-                atrous_row(kernel, lum.row(y), y, s, power, pairs);
+                atrous_row(kernel, outputs, lum.row(y), y, s, power, pairs);
               }
             }
           }

@@ -13,11 +13,21 @@
 #include "methods/svgf/atrous.h"
 #include "methods/svgf/gradient.h"
 #include "methods/svgf/reproject.h"
+#include "methods/svgf/sinks.h"
 #include "methods/svgf/variance.h"
 
 namespace svgf::cpu {
 
-void run_atrous_rows(const AtrousKernel& kernel, int width, int height);
+// Where an a-trous iteration's rows go when the pipeline fuses its outputs into the iterations
+// (methods/svgf/flavors.h, kFusedOutputs): the last iteration remodulates its result instead of
+// storing it (`remodulate`, then kernel.out is not written), the feedback tap's also copies its
+// result's color into the color history. Each row through the same functions as the sinks.
+struct AtrousRowOutputs {
+  const RemodulateSink* remodulate = nullptr;
+  RgbView color_history;  // none where r is null
+};
+void run_atrous_rows(const AtrousKernel& kernel, int width, int height,
+                     const AtrousRowOutputs& outputs = {});
 void run_variance_rows(const VarianceKernel& kernel, int width, int height);
 void run_reproject_rows(const ReprojectKernel& kernel, int width, int height);
 void run_gradient_samples_rows(const GradientSamplesKernel& kernel, int strata_width,
@@ -59,11 +69,28 @@ struct PixelDriver<GradientLambdaKernel> {
   }
 };
 
-// Exact mode's kernels with any normal-weight power (the rows pick theirs from phi_normal).
-template <class Power>
-struct PixelDriver<AtrousIteration<SvgfExact, Power, IllumVarView>> {
-  static void run(const AtrousIteration<SvgfExact, Power, IllumVarView>& k, int w, int h) {
-    run_atrous_rows(AtrousKernel{k.guides, k.in, k.out, k.step, k.params}, w, h);
+// Exact mode's kernels with any normal-weight power (the rows pick theirs from phi_normal), and
+// the a-trous with any of the pipeline's outputs: the next iteration's buffer, the remodulation,
+// either with the feedback tap's copy (methods/svgf/pipeline.h).
+inline void run_atrous_into(const AtrousKernel& k, const IllumVarView& out, int w, int h,
+                            AtrousRowOutputs o = {}) {
+  run_atrous_rows(AtrousKernel{k.guides, k.in, out, k.step, k.params}, w, h, o);
+}
+inline void run_atrous_into(const AtrousKernel& k, const RemodulateSink& out, int w, int h,
+                            AtrousRowOutputs o = {}) {
+  o.remodulate = &out;
+  run_atrous_rows(k, w, h, o);
+}
+template <class Out>
+void run_atrous_into(const AtrousKernel& k, const FeedbackTee<Out>& out, int w, int h) {
+  AtrousRowOutputs o;
+  o.color_history = out.color_history;
+  run_atrous_into(k, out.out, w, h, o);
+}
+template <class Power, class Out>
+struct PixelDriver<AtrousIteration<SvgfExact, Power, Out>> {
+  static void run(const AtrousIteration<SvgfExact, Power, Out>& k, int w, int h) {
+    run_atrous_into(AtrousKernel{k.guides, k.in, IllumVarView(), k.step, k.params}, k.out, w, h);
   }
 };
 template <class Power>

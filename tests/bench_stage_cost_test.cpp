@@ -736,6 +736,47 @@ TEST_CASE("stage cost: CUDA's exact mode over packed pixels differs where the pa
   CHECK(bench::frame_cost(Mode::Fast, p, f).read == bench::frame_cost(Mode::Fast, p, g).read);
 }
 
+TEST_CASE("stage cost: the outputs fused into the a-trous on planes, as the CPU runs them",
+          "[bench][stage_cost]") {
+  // methods/svgf/flavors.h, SvgfExact: kFusedOutputs (the runner's traits say so). Against the
+  // stage kernels' three passes: the tap's filtered color and the last filtered color are not
+  // read back (2 x 3 floats), the last iteration writes the output 3 instead of its color +
+  // variance 4; the operations are the same, counted in the a-trous.
+  const auto sum = [](const SvgfParams& params, bool fused, double surface) {
+    bench::FrameTraits f = frames(surface, 1920, 1080);
+    f.emission = true;
+    f.fused_outputs = fused;
+    bench::StageCost total;
+    for (Stage s : {Stage::Atrous, Stage::Feedback, Stage::Remodulate}) {
+      const bench::StageCost c = bench::stage_cost(Mode::Exact, s, params, f);
+      total.read += c.read;
+      total.written += c.written;
+      total.ops += c.ops;
+      if (fused && params.iterations > 0 && s != Stage::Atrous) CHECK(c.bytes() == 0);
+    }
+    return total;
+  };
+  SvgfParams tap;
+  tap.feedback_tap = 1;
+  SvgfParams no_tap;
+  no_tap.feedback_tap = -1;
+  for (const auto& [params, read, written] :
+       {std::make_tuple(tap, -6.0, -4.0), std::make_tuple(no_tap, -3.0, -4.0)}) {
+    REQUIRE(params.iterations > 1);
+    const bench::StageCost a = sum(params, true, 1.0), b = sum(params, false, 1.0);
+    CHECK(a.ops == b.ops);
+    CHECK(a.read - b.read == read * 4);
+    CHECK(a.written - b.written == written * 4);
+  }
+  // Without an iteration the remodulation is a pass of its own either way.
+  SvgfParams none;
+  none.iterations = 0;
+  const bench::StageCost a = sum(none, true, 1.0), b = sum(none, false, 1.0);
+  CHECK(a.read == b.read);
+  CHECK(a.written == b.written);
+  CHECK(a.read > 0);
+}
+
 TEST_CASE("stage cost: a stage the configuration does not run costs nothing",
           "[bench][stage_cost][asvgf]") {
   // `defaults` here: no anti-lag (the defaults' own anti-lag is `gradient`).

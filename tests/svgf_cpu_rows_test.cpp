@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include "methods/svgf/atrous.h"
+#include "methods/svgf/sinks.h"
 #include "methods/svgf/variance.h"
 #include "kernels_cpu/svgf_rows.h"
 #include "kernels_cpu/parallel_for.h"
@@ -90,6 +91,66 @@ TEST_CASE("cpu rows: a-trous rows equal the per-pixel kernel bitwise", "[cpu_row
     test::fill_uniform(in, 0.f, 3.f, ++seed);
     for (float phi : phis)
       for (int step : {1, 2, 4, 8, 16}) require_atrous_rows_match(f, in, phi, step);
+  }
+}
+
+namespace {
+
+// One a-trous iteration into the pipeline's fused outputs (methods/svgf/pipeline.h,
+// kFusedOutputs): the per-pixel kernel with the sink against the CPU engine's driver for it
+// (the rows, kernels_cpu/svgf_rows.h), every plane either writes compared.
+void require_fused_outputs_match(const Frame& f, const Image& in, bool emission, int step) {
+  const int w = in.width(), h = in.height();
+  Image albedo(w, h, 3), light(w, h, 3);
+  test::fill_uniform(albedo, 0.f, 1.f, 7u + static_cast<uint32_t>(step));  // some under epsilon
+  test::fill_uniform(light, 0.f, 0.5f, 11u);
+  if (w * h > 100) albedo.plane(1)[w + 3] = std::numeric_limits<float>::quiet_NaN();
+  const ConstRgbView emitted = emission ? ConstRgbView(light.rgb()) : ConstRgbView();
+  const std::string what = std::to_string(w) + "x" + std::to_string(h) + " step " +
+                           std::to_string(step) + (emission ? " with emission" : "");
+  Image out_a(w, h, 3, -1.f), out_b(w, h, 3, -2.f), signal_a(w, h, 4, -1.f),
+      signal_b(w, h, 4, -2.f), history_a(w, h, 3, -1.f), history_b(w, h, 3, -2.f);
+  const RemodulateSink remodulate_a{albedo.rgb(), emitted, out_a.rgb()},
+      remodulate_b{albedo.rgb(), emitted, out_b.rgb()};
+  const IllumVarView next_a{signal_a.rgb(), signal_a.plane(3)},
+      next_b{signal_b.rgb(), signal_b.plane(3)};
+  const auto run_both = [&](const auto& sink_a, const auto& sink_b) {
+    using Out = std::decay_t<decltype(sink_a)>;
+    using Iteration = AtrousIteration<SvgfExact, NormalPower<ExactArith>, Out>;
+    const Iteration a{f.guides(), {in.rgb(), in.plane(3)}, sink_a, step, SvgfParams()};
+    const Iteration b{f.guides(), {in.rgb(), in.plane(3)}, sink_b, step, SvgfParams()};
+    cpu::for_each_pixel(w, h, a);
+    cpu::PixelDriver<Iteration>::run(b, w, h);
+  };
+  run_both(remodulate_a, remodulate_b);
+  test::require_identical(out_b, out_a, "remodulated a-trous " + what);
+  run_both(FeedbackTee<IllumVarView>{next_a, history_a.rgb()},
+           FeedbackTee<IllumVarView>{next_b, history_b.rgb()});
+  test::require_identical(signal_b, signal_a, "fed-back a-trous " + what);
+  test::require_identical(history_b, history_a, "fed-back a-trous's history " + what);
+  out_a = Image(w, h, 3, -1.f);
+  out_b = Image(w, h, 3, -2.f);
+  history_a = Image(w, h, 3, -1.f);
+  history_b = Image(w, h, 3, -2.f);
+  run_both(FeedbackTee<RemodulateSink>{{albedo.rgb(), emitted, out_a.rgb()}, history_a.rgb()},
+           FeedbackTee<RemodulateSink>{{albedo.rgb(), emitted, out_b.rgb()}, history_b.rgb()});
+  test::require_identical(out_b, out_a, "fed-back, remodulated a-trous " + what);
+  test::require_identical(history_b, history_a, "fed-back, remodulated a-trous's history " + what);
+}
+
+}  // namespace
+
+TEST_CASE("cpu rows: a-trous rows with fused outputs equal the per-pixel kernel with its sinks",
+          "[cpu_rows]") {
+  const int sizes[][2] = {{257, 89}, {16, 16}, {3, 2}, {0, 5}};
+  uint32_t seed = 500;
+  for (const auto& size : sizes) {
+    const int w = size[0], h = size[1];
+    const Frame f = random_guides(w, h, ++seed);
+    Image in(w, h, 4);
+    test::fill_uniform(in, 0.f, 3.f, ++seed);
+    for (bool emission : {false, true})
+      for (int step : {1, 4}) require_fused_outputs_match(f, in, emission, step);
   }
 }
 

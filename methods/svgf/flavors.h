@@ -17,9 +17,14 @@ struct SvgfExact {
   using Guides = GuideView;             // separate depth and normal planes
   using Signal = IllumVarView;          // color + variance, four planes
   using ConstSignal = ConstIllumVarView;
-  // Every stage is its own pass (so each can be timed, read back and compared alone).
+  // Every stage is its own pass (so each can be timed, read back and compared alone), but for
+  // the outputs: the feedback copy and the remodulation ride on the a-trous iterations whose
+  // results they are, as on CUDA (the CPU's rows remodulate a row as they finish it:
+  // kernels_cpu/svgf_rows.h, AtrousRowOutputs). The remodulation's own pass read back the
+  // filtered color and wrote the output: Zen 5 VM 720p camera-pan 2 threads, about 1 ms of a
+  // 52 ms frame (docs/benchmarks.md).
   static constexpr bool kFusedReprojection = false;
-  static constexpr bool kFusedOutputs = false;
+  static constexpr bool kFusedOutputs = true;
   // A-SVGF's three stages as three passes (the CPU runs them as vectorized rows).
   static constexpr bool kFusedGradient = false;
   // The a-trous and spatial-variance taps as one loop with bounds tests (a second, test-free
