@@ -18,7 +18,8 @@ struct Ceilings {
   double ops_per_s = 0;   // floating-point operations per second; 0: unknown
   std::string copy_what;  // how copy_gbs was measured
   // The CPU's exact a-trous on a frame in the caches, ns a tap (bench/atrous_probe.h); 0: not
-  // measured (a GPU run, --no-ceilings).
+  // measured (a GPU run, another method's, --no-ceilings). A run's JSON has it only for SVGF on
+  // the CPU.
   double resident_atrous_ns_per_tap = 0;
 };
 
