@@ -453,9 +453,15 @@ void atrous_row(const AtrousKernel& k, const AtrousRowOutputs& outputs,
   const float* __restrict cr = k.in.color.r;
   const float* __restrict cg = k.in.color.g;
   const float* __restrict cb = k.in.color.b;
-  // Pixels whose 5 taps in x all lie inside take a tap row's five without tests; the border
-  // pixels on either side, with a test a tap. Each pixel adds dx = -2..2 in order.
+  // Pixels whose 5 taps in x all lie inside (inner0..inner1) may take a tap row's five without
+  // tests; the others, with a test a tap. The tested loops run whole vectors at either end of
+  // the row (kVectorLanes pixels, or 2 steps), and the untested one the whole vectors between
+  // them: no scalar tail (at 720p the first iterations' 12 and 8 pixels a tap row), as the
+  // tested loops' extra pixels pass their tests. Each pixel adds dx = -2..2 in order.
   const int inner0 = std::min(w, 2 * k.step), inner1 = std::max(inner0, w - 2 * k.step);
+  const int left = std::min(w, std::max(inner0, kVectorLanes));
+  const int right = inner1 > left ? left + (inner1 - left) / kVectorLanes * kVectorLanes
+                                  : std::max(left, inner1);
   for (int dy = -2; dy <= 2; ++dy) {
     const int yq = y + dy * k.step;
     if (yq < 0 || yq >= h) continue;
@@ -480,10 +486,10 @@ void atrous_row(const AtrousKernel& k, const AtrousRowOutputs& outputs,
       using Interior = std::integral_constant<TapColumns, TapColumns::kInterior>;
       using Border = std::integral_constant<TapColumns, TapColumns::kBorder>;
       using Clamped = std::integral_constant<TapColumns, TapColumns::kBorderClamped>;
-      if (inner0 < inner1) {
+      if (left < right) {
         for (int dx = -2; dx <= 2; ++dx)
           if (dy != 0 || dx != 0) shared[dx + 2] = pairs.tap(y, dy, dx);
-        call(Interior{}, inner0, inner1, inner0, inner1);
+        call(Interior{}, left, right, left, right);
       }
       const auto border = [&](int active0, int active1, int x0, int x1) {
         if (active0 >= active1) return;
@@ -493,8 +499,8 @@ void atrous_row(const AtrousKernel& k, const AtrousRowOutputs& outputs,
         else
           call(Clamped{}, active0, active1, active0, active1);
       };
-      border(0, inner0, 0, std::min(w, std::max(inner0, kVectorLanes)));
-      border(inner1, w, std::max(0, std::min(inner1, w - kVectorLanes)), w);
+      border(0, left, 0, left);
+      border(right, w, std::max(0, std::min(right, w - kVectorLanes)), w);
     };
     if (dy == 0)
       tap_rows(std::true_type{});

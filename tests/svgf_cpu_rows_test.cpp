@@ -79,8 +79,10 @@ void require_variance_rows_match(const Frame& f, const Image& acc, const Image& 
 }  // namespace
 
 TEST_CASE("cpu rows: a-trous rows equal the per-pixel kernel bitwise", "[cpu_rows]") {
-  // {0, 5} and {6, 0}: no rows or no columns (nothing to write, no band to divide).
-  const int sizes[][2] = {{257, 89}, {16, 16}, {3, 2}, {1, 7}, {64, 33}, {0, 5}, {6, 0}};
+  // {0, 5} and {6, 0}: no rows or no columns (nothing to write, no band to divide). {100, 6}:
+  // a right border narrower than a vector at step 1, its loop widened into the interior.
+  const int sizes[][2] = {{257, 89}, {16, 16}, {3, 2},  {1, 7},
+                          {64, 33},  {100, 6},  {0, 5}, {6, 0}};
   const float phis[] = {128.f, 1.f, 0.f, 100.f};
   uint32_t seed = 0;
   for (const auto& size : sizes) {
