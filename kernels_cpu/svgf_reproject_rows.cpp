@@ -176,7 +176,8 @@ SVGF_TAP_LOOP void reproject_bilinear_windows(const ReprojectKernel& kernel, int
     // The same chunk two rows below (a smooth motion field: its window as far below), into
     // L2. Camera-pan 720p, Zen 5 VM, reproject / atrous, medians of alternating runs: 0.227
     // with this row's chunk four ahead into L1, 0.219 one row below, 0.203 two rows below
-    // (0.206 and 0.208 three and four; 0.205 with this row's four ahead as well).
+    // (0.206 and 0.208 three and four; 0.205 with this row's four ahead as well). In the
+    // last two rows the addresses lie past the planes: a prefetch does not fault.
     prefetch_chunk(k, k.guides.index(x0, y + 2), corner + 2 * pw);
 #pragma GCC ivdep
     for (int l = 0; l < kChunk; ++l) {
