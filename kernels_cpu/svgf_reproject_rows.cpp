@@ -319,21 +319,27 @@ void reproject_bilinear_row(const ReprojectKernel& kernel, int y, RowInts& ints)
   const int room = w / kChunk + 1;
   int count[kWindowKinds] = {};
   int gather_from = 0;  // the first pixel not read yet, nor in a window
+  // The gathers' pixels two rows below, as the windows prefetch theirs (the previous frame's
+  // lines at the pixels themselves: their taps spread, but not far). Camera-pan 720p, Zen 5
+  // VM, reproject / atrous, medians of five alternating runs: 0.208 -> 0.196.
+  const auto gather = [&](int x0, int x1) {
+    for (int x = x0; x < x1; x += kChunk)
+      prefetch_chunk(kernel, kernel.guides.index(x, y + 2), kernel.prev_guides.index(x, y + 2));
+    reproject_bilinear(kernel, y, x0, x1, lambda, ints.reads.data(), fallback);
+  };
   for (int x0 = 0; x0 + kChunk <= w; x0 += kChunk) {
     ChunkWindow window;
     const int kind =
         chunk_window(kernel, y, x0, ints.dx.data(), ints.dy.data(), ints.moved.data(), window);
     if (kind < 0 && chunk_reads(ints.reads.data(), x0)) continue;
-    if (gather_from < x0)
-      reproject_bilinear(kernel, y, gather_from, x0, lambda, ints.reads.data(), fallback);
+    if (gather_from < x0) gather(gather_from, x0);
     if (kind < 0)
       reproject_without_history(kernel, y, x0, x0 + kChunk, lambda, fallback);
     else
       ints.windows[kind * room + count[kind]++] = window;
     gather_from = x0 + kChunk;
   }
-  if (gather_from < w)
-    reproject_bilinear(kernel, y, gather_from, w, lambda, ints.reads.data(), fallback);
+  if (gather_from < w) gather(gather_from, w);
   const ChunkWindow* windows = ints.windows.data();
   reproject_bilinear_windows<0, false>(kernel, y, windows, count[0], lambda, fallback);
   reproject_bilinear_windows<1, false>(kernel, y, windows + room, count[1], lambda, fallback);
