@@ -12,6 +12,8 @@
 // stratum's own lambda (a division) once, not once for every neighbour that reads it, then the
 // neighbourhood's maximum in the kernel's order, a tap at a time along a row. Same bits as the
 // kernels (tests/svgf_cpu_gradient_rows_test.cpp).
+#include <vector>
+
 #include "kernels_cpu/row_tools.h"
 #include "kernels_cpu/svgf_rows.h"
 
@@ -23,25 +25,93 @@ SVGF_TAP_LOOP void masked_bytes(const float* __restrict mask, uint8_t* __restric
   for (int i = 0; i < n; ++i) out[i] = GradientSamplesKernel::masked(mask[i]);
 }
 
+// Each stratum's first masked pixel in raster order among its nine (-1: none), for the n
+// strata of whole columns of a stratum row whose three rows' mask tests are `masked` (rows w
+// bytes apart), as GradientSamplesKernel::sample finds it (vectorized: the loads at a stride
+// of 3 bytes are permutes).
+SVGF_TAP_LOOP void first_masked(const uint8_t* __restrict masked, int w, int* __restrict first,
+                                int n) {
+  constexpr int k = kGradientStratum;
+  for (int sx = 0; sx < n; ++sx) {
+    int f = -1;
+#pragma GCC unroll 9
+    for (int t = k * k - 1; t >= 0; --t) f = masked[(t / k) * w + sx * k + t % k] ? t : f;
+    first[sx] = f;
+  }
+}
+
+// The luminances of the n strata's samples, by their first masked pixels: each stratum's pixel
+// (at its centre, offset `centre`, where it has none: loaded, not used) as a gather. Planes
+// offset to the stratum row's first pixel. A loop of its own: with the selects below in it, GCC
+// sinks the loads under the test for a sample and vectorizes neither.
+SVGF_TAP_LOOP void sample_luminances(const int* __restrict first,
+                                     const float* __restrict previous,
+                                     const float* __restrict current, int w, int centre,
+                                     float* __restrict prev, float* __restrict cur, int n) {
+  constexpr int k = kGradientStratum;
+  for (int sx = 0; sx < n; ++sx) {
+    const int f = first[sx];
+    const int at = f >= 0 ? f : centre;
+    const int i = (at / k) * w + sx * k + at % k;
+    prev[sx] = previous[i];
+    cur[sx] = current[i];
+  }
+}
+
+// The n strata's samples, GradientSamplesKernel::sample_at with its branches as selects: the
+// values where there is a sample and both luminances pass radiance_ok, the kernel's defaults
+// (StratumValue) elsewhere; the guide offset the sample's, or `centre`. The outputs offset to
+// the row's first stratum.
+SVGF_TAP_LOOP void samples_from_first(const int* __restrict first, const float* __restrict prev,
+                                      const float* __restrict cur, int centre,
+                                      float* __restrict delta, float* __restrict normalizer,
+                                      float* __restrict weight, float* __restrict guide_offset,
+                                      int n) {
+  const StratumValue none;
+  for (int sx = 0; sx < n; ++sx) {
+    const int f = first[sx];
+    const float p = prev[sx], c = cur[sx];
+    const bool data = (f >= 0) & radiance_ok(p) & radiance_ok(c);
+    delta[sx] = data ? c - p : none.delta;
+    normalizer[sx] = data ? max_f(c, p) : none.normalizer;
+    weight[sx] = data ? 1.f : none.weight;
+    guide_offset[sx] = static_cast<float>(f >= 0 ? f : centre);
+  }
+}
+
+// A stratum row's scratch for the samples stage (width pixels).
+struct SamplesScratch {
+  std::vector<uint8_t> masked;  // its three rows' mask tests
+  std::vector<int> first;       // each stratum's first masked pixel
+  std::vector<float> prev, cur; // the luminances there
+  explicit SamplesScratch(int width)
+      : masked(static_cast<size_t>(kGradientStratum) * width),
+        first(static_cast<size_t>(width / kGradientStratum)),
+        prev(first.size()),
+        cur(first.size()) {}
+};
+
 // Stratum row sy of the samples stage: its three pixel rows' mask tests at once (they lie one
-// after the other in the plane), then each stratum of three whole columns finds its first
-// masked pixel in raster order in those bytes and takes its sample by the kernel's sample_at
-// (its centre, for the guides without a sample, at offset 4). A partial last column or row runs
-// the kernel. `masked`: 3 * width bytes.
-void gradient_samples_row(const GradientSamplesKernel& k, int sy, uint8_t* masked) {
+// after the other in the plane), then its strata of three whole columns find their first
+// masked pixels in those bytes and take their samples as the kernel's sample_at does (the
+// centre, for the guides without a sample, at offset 4), each pass a vector loop (a stratum at
+// a time, scalar, they took 0.6 ms of a 720p frame on the Zen 5 VM). A partial last column or
+// row runs the kernel. `masked`: 3 * width bytes; `first`: width / 3 ints.
+void gradient_samples_row(const GradientSamplesKernel& k, int sy, SamplesScratch& scratch) {
   constexpr int n = kGradientStratum;
   const int w = k.width, sw = k.strata_width, y0 = sy * n;
   int whole = 0;  // strata of whole columns, in a stratum row of whole pixel rows
   if (y0 + n <= k.height) {
-    masked_bytes(k.samples.mask + static_cast<size_t>(y0) * w, masked, n * w);
+    const size_t row = static_cast<size_t>(y0) * w;
+    const size_t s = static_cast<size_t>(sy) * sw;
     whole = w / n;
-    for (int sx = 0; sx < whole; ++sx) {
-      const int x0 = sx * n;
-      int first = -1;
-      for (int t = n * n - 1; t >= 0; --t)
-        if (masked[(t / n) * w + x0 + t % n]) first = t;
-      k.store(sy * sw + sx, k.sample_at(first, x0, y0, n + 1));
-    }
+    masked_bytes(k.samples.mask + row, scratch.masked.data(), n * w);
+    first_masked(scratch.masked.data(), w, scratch.first.data(), whole);
+    sample_luminances(scratch.first.data(), k.samples.previous + row, k.samples.current + row, w,
+                      n + 1, scratch.prev.data(), scratch.cur.data(), whole);
+    samples_from_first(scratch.first.data(), scratch.prev.data(), scratch.cur.data(), n + 1,
+                       k.out.delta + s, k.out.normalizer + s, k.out.weight + s,
+                       k.guide_offset + s, whole);
   }
   for (int sx = whole; sx < sw; ++sx) k(sx, sy);
 }
@@ -167,8 +237,8 @@ void run_gradient_samples_rows(const GradientSamplesKernel& kernel, int strata_w
                                int strata_height) {
   (void)strata_width;  // the kernel's own
   parallel_rows(strata_height, [&](int y0, int y1) {
-    std::vector<uint8_t> masked(static_cast<size_t>(kGradientStratum) * kernel.width);
-    for (int sy = y0; sy < y1; ++sy) gradient_samples_row(kernel, sy, masked.data());
+    SamplesScratch scratch(kernel.width);
+    for (int sy = y0; sy < y1; ++sy) gradient_samples_row(kernel, sy, scratch);
   });
 }
 
