@@ -1,6 +1,7 @@
 // A-SVGF's gradient stages (methods/svgf/gradient.h) on the CPU, a stratum row at a time. The
 // samples: the mask tests of a stratum row's three pixel rows as one vector loop (a byte a
-// pixel), then each stratum's first masked pixel from those bytes. The a-trous: the
+// pixel), then vector loops over its strata: each one's first masked pixel from those bytes,
+// its luminances gathered there, its values by the kernel's rule as selects. The a-trous: the
 // per-stratum kernel branches on every tap (inside? data? same mesh?) and stays scalar. A row
 // runs its interior strata (all nine taps inside the stratum image) as one vector loop: every
 // tap's weight by the kernel's own functions, added by a select where the kernel adds it, so a
