@@ -3,7 +3,8 @@
 // pixel), then vector loops over its strata: each one's first masked pixel from those bytes,
 // its luminances gathered there, its values by the kernel's rule as selects. The a-trous: the
 // per-stratum kernel branches on every tap (inside? data? same mesh?) and stays scalar. A row
-// runs its interior strata (all nine taps inside the stratum image) as one vector loop: every
+// runs its interior strata (all nine taps inside the stratum image) as vector loops, one a tap
+// row with the sums in row scratch between them (nine taps in one loop spilled): every
 // tap's weight by the kernel's own functions, added by a select where the kernel adds it, so a
 // skipped tap leaves the sums untouched (adding 0 would not: -0, Inf * 0, NaN * 0), the same
 // terms in the same order. A stratum's guides lie at its sample's pixel, one pixel of nine at a
@@ -13,6 +14,7 @@
 // stratum's own lambda (a division) once, not once for every neighbour that reads it, then the
 // neighbourhood's maximum in the kernel's order, a tap at a time along a row. Same bits as the
 // kernels (tests/svgf_cpu_gradient_rows_test.cpp).
+#include <type_traits>
 #include <vector>
 
 #include "kernels_cpu/row_tools.h"
@@ -140,62 +142,115 @@ SVGF_TAP_LOOP void gather_strata_guides(const GradientAtrousKernel& kernel, int 
   }
 }
 
-// Strata x0..x1 of stratum row sy, all of whose taps lie inside.
-template <class Power>
-SVGF_TAP_LOOP void gradient_atrous_interior(const GradientAtrousKernel& kernel,
-                                            const float* __restrict depth,
-                                            const float* __restrict nx,
-                                            const float* __restrict ny,
-                                            const float* __restrict nz,
-                                            const uint32_t* __restrict mesh_of, int sy, int x0,
-                                            int x1, const Power& power) {
+// The interior strata's centre terms (1 / phi_z from the depth's fwidth at each one's guide
+// pixel) and their sums at 0, for strata x0..x1 of stratum row sy; scratch indexed by sx.
+SVGF_TAP_LOOP void gradient_atrous_centres(const GradientAtrousKernel& kernel, int sy, int x0,
+                                           int x1, float* __restrict inv_phi_z,
+                                           float* __restrict sum_w, float* __restrict sum_d,
+                                           float* __restrict sum_n) {
   const GradientAtrousKernel k = kernel;  // a local copy: its plane pointers stay in registers
-  const int sw = k.at.strata_width, step = k.step;
-  const GradientAtrousKernel::InvTapDistances distances = k.inv_tap_distances();
-#pragma GCC ivdep
   for (int sx = x0; sx < x1; ++sx) {
-    const int s = sy * sw + sx;
-    const int p = k.at.pixel(sx, sy);
+    inv_phi_z[sx] = inv_depth_tolerance<ExactArith>(
+        k.phi_depth, k.guides.depth_fwidth(k.at.pixel(sx, sy)), k.depth_gradient_floor);
+    sum_w[sx] = sum_d[sx] = sum_n[sx] = 0.f;
+  }
+}
+
+// The three taps dx = -1, 0, 1 of tap row dy (kCentreRow: dy = 0) for strata x0..x1 of a
+// stratum row starting at index `row`, added to the sums in the kernel's order: each tap's
+// weight by the kernel's own functions, added by a select where the kernel adds it, so a
+// skipped tap leaves the sums untouched (adding 0 would not: -0, Inf * 0, NaN * 0). A tap row a
+// loop (the nine taps in one loop kept 65 values on the stack).
+template <class Power, bool kCentreRow>
+SVGF_TAP_LOOP void gradient_atrous_tap_row(
+    const float* __restrict depth, const float* __restrict nx, const float* __restrict ny,
+    const float* __restrict nz, const uint32_t* __restrict mesh_of,
+    const float* __restrict weight_in, const float* __restrict delta_in,
+    const float* __restrict normalizer_in, const float* __restrict inv_phi_z,
+    float* __restrict sum_w, float* __restrict sum_d, float* __restrict sum_n, int row, int dy,
+    int sw, int step, GradientAtrousKernel::InvTapDistances distances, int x0, int x1,
+    const Power& power) {
+  for (int sx = x0; sx < x1; ++sx) {
+    const int s = row + sx;
     const EdgeSample c{depth[s], make_vec3(nx[s], ny[s], nz[s]), 0.f};
     const uint32_t mesh = mesh_of[s];
-    const float inv_phi_z = inv_depth_tolerance<ExactArith>(k.phi_depth, k.guides.depth_fwidth(p),
-                                                            k.depth_gradient_floor);
-    float weight_sum = 0.f, delta = 0.f, normalizer = 0.f;
-#pragma GCC unroll 9
-    for (int t = 0; t < 9; ++t) {  // dy outer, dx inner, as the kernel
-      const int dx = t % 3 - 1, dy = t / 3 - 1;
+    const float ipz = inv_phi_z[sx];
+    float weight_sum = sum_w[sx], delta = sum_d[sx], normalizer = sum_n[sx];
+#pragma GCC unroll 3
+    for (int dx = -1; dx <= 1; ++dx) {
       const int q = s + (dy * sw + dx) * step;
-      const bool centre = dx == 0 && dy == 0;
+      const bool centre = kCentreRow && dx == 0;
       const EdgeSample e{depth[q], make_vec3(nx[q], ny[q], nz[q]), 0.f};
       // The kernel's scale (the centre's is not used).
-      const float scale = distances.depth_scale(inv_phi_z, dx, dy);
+      const float scale = distances.depth_scale(ipz, dx, dy);
       const float w = centre ? 1.f : edge_stopping_weight<RowExactArith>(c, e, scale, power, 0.f);
-      const bool take = (k.in.weight[q] > 0.f) & (centre | (mesh_of[q] == mesh));
+      const bool take = (weight_in[q] > 0.f) & (centre | (mesh_of[q] == mesh));
       const float with_sum = weight_sum + w;
-      const float with_delta = delta + k.in.delta[q] * w;
-      const float with_normalizer = normalizer + k.in.normalizer[q] * w;
+      const float with_delta = delta + delta_in[q] * w;
+      const float with_normalizer = normalizer + normalizer_in[q] * w;
       weight_sum = take ? with_sum : weight_sum;
       delta = take ? with_delta : delta;
       normalizer = take ? with_normalizer : normalizer;
     }
-    const bool any = weight_sum > 0.f;
-    k.out.delta[s] = any ? delta / weight_sum : 0.f;
-    k.out.normalizer[s] = any ? normalizer / weight_sum : 0.f;
-    k.out.weight[s] = any ? 1.f : 0.f;
+    sum_w[sx] = weight_sum;
+    sum_d[sx] = delta;
+    sum_n[sx] = normalizer;
   }
 }
 
+// The interior strata's results from their sums, the kernel's last lines.
+SVGF_TAP_LOOP void gradient_atrous_results(const float* __restrict sum_w,
+                                           const float* __restrict sum_d,
+                                           const float* __restrict sum_n,
+                                           float* __restrict delta, float* __restrict normalizer,
+                                           float* __restrict weight, int x0, int x1) {
+  for (int sx = x0; sx < x1; ++sx) {
+    const bool any = sum_w[sx] > 0.f;
+    delta[sx] = any ? sum_d[sx] / sum_w[sx] : 0.f;
+    normalizer[sx] = any ? sum_n[sx] / sum_w[sx] : 0.f;
+    weight[sx] = any ? 1.f : 0.f;
+  }
+}
+
+// A stratum row's scratch for the a-trous (its strata's centre terms and sums).
+struct AtrousScratch {
+  std::vector<float> inv_phi_z, sum_w, sum_d, sum_n;
+  explicit AtrousScratch(int strata)
+      : inv_phi_z(static_cast<size_t>(strata)), sum_w(inv_phi_z.size()),
+        sum_d(inv_phi_z.size()), sum_n(inv_phi_z.size()) {}
+};
+
 template <class Power>
 void gradient_atrous_row(const GradientAtrousKernel& k, const StrataGuides& g, int sy,
-                         const Power& power) {
+                         AtrousScratch& scratch, const Power& power) {
   const int sw = k.at.strata_width, step = k.step;
   const bool inside_y = sy - step >= 0 && sy + step < k.strata_height;
   const int x0 = inside_y ? (step < sw ? step : sw) : sw;  // [x0, x1): interior strata
   const int x1 = inside_y && sw - step > x0 ? sw - step : x0;
   for (int sx = 0; sx < x0; ++sx) k(sx, sy);
-  if (x1 > x0)
-    gradient_atrous_interior(k, g.depth.data(), g.nx.data(), g.ny.data(), g.nz.data(),
-                             g.mesh.data(), sy, x0, x1, power);
+  if (x1 > x0) {
+    float* ipz = scratch.inv_phi_z.data();
+    float* sum_w = scratch.sum_w.data();
+    float* sum_d = scratch.sum_d.data();
+    float* sum_n = scratch.sum_n.data();
+    gradient_atrous_centres(k, sy, x0, x1, ipz, sum_w, sum_d, sum_n);
+    const GradientAtrousKernel::InvTapDistances d = k.inv_tap_distances();
+    const int row = sy * sw;
+    for (int dy = -1; dy <= 1; ++dy) {  // dy outer, dx inner, as the kernel
+      const auto taps = [&](auto centre_row) {
+        gradient_atrous_tap_row<Power, decltype(centre_row)::value>(
+            g.depth.data(), g.nx.data(), g.ny.data(), g.nz.data(), g.mesh.data(), k.in.weight,
+            k.in.delta, k.in.normalizer, ipz, sum_w, sum_d, sum_n, row, dy, sw, step, d, x0,
+            x1, power);
+      };
+      if (dy == 0)
+        taps(std::true_type{});
+      else
+        taps(std::false_type{});
+    }
+    gradient_atrous_results(sum_w, sum_d, sum_n, k.out.delta + row, k.out.normalizer + row,
+                            k.out.weight + row, x0, x1);
+  }
   for (int sx = x1; sx < sw; ++sx) k(sx, sy);
 }
 
@@ -274,7 +329,8 @@ void run_gradient_atrous_rows(const GradientAtrousKernel& kernel, int strata_wid
   });
   with_normal_power(kernel.phi_normal, [&](const auto& power) {
     parallel_rows(sh, [&](int y0, int y1) {
-      for (int sy = y0; sy < y1; ++sy) gradient_atrous_row(kernel, g, sy, power);
+      AtrousScratch scratch(sw);
+      for (int sy = y0; sy < y1; ++sy) gradient_atrous_row(kernel, g, sy, scratch, power);
     });
   });
 }
