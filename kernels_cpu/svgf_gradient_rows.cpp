@@ -99,7 +99,8 @@ struct SamplesScratch {
 // masked pixels in those bytes and take their samples as the kernel's sample_at does (the
 // centre, for the guides without a sample, at offset 4), each pass a vector loop (a stratum at
 // a time, scalar, they took 0.6 ms of a 720p frame on the Zen 5 VM). A partial last column or
-// row runs the kernel. `masked`: 3 * width bytes; `first`: width / 3 ints.
+// row runs the kernel. `scratch`: the row's mask bytes and its strata's first pixels and
+// luminances (SamplesScratch).
 void gradient_samples_row(const GradientSamplesKernel& k, int sy, SamplesScratch& scratch) {
   constexpr int n = kGradientStratum;
   const int w = k.width, sw = k.strata_width, y0 = sy * n;
