@@ -43,19 +43,21 @@ SVGF_TAP_LOOP void first_masked(const uint8_t* __restrict masked, int w, int* __
   }
 }
 
-// The luminances of the n strata's samples, by their first masked pixels: each stratum's pixel
-// (at its centre, offset `centre`, where it has none: loaded, not used) as a gather. Planes
-// offset to the stratum row's first pixel. A loop of its own: with the selects below in it, GCC
-// sinks the loads under the test for a sample and vectorizes neither.
+// The n strata's guide offsets (the first masked pixel's, or `centre` where there is none) and
+// the luminances there (a gather; at the centre loaded, not used). Planes offset to the stratum
+// row's first pixel, the offsets to its first stratum. A loop of its own: with the selects below
+// in it, GCC sinks the loads under the test for a sample and vectorizes neither.
 SVGF_TAP_LOOP void sample_luminances(const int* __restrict first,
                                      const float* __restrict previous,
                                      const float* __restrict current, int w, int centre,
-                                     float* __restrict prev, float* __restrict cur, int n) {
+                                     float* __restrict guide_offset, float* __restrict prev,
+                                     float* __restrict cur, int n) {
   constexpr int k = kGradientStratum;
   for (int sx = 0; sx < n; ++sx) {
     const int f = first[sx];
     const int at = f >= 0 ? f : centre;
     const int i = (at / k) * w + sx * k + at % k;
+    guide_offset[sx] = static_cast<float>(at);
     prev[sx] = previous[i];
     cur[sx] = current[i];
   }
@@ -63,12 +65,10 @@ SVGF_TAP_LOOP void sample_luminances(const int* __restrict first,
 
 // The n strata's samples, GradientSamplesKernel::sample_at with its branches as selects: the
 // values where there is a sample and both luminances pass radiance_ok, the kernel's defaults
-// (StratumValue) elsewhere; the guide offset the sample's, or `centre`. The outputs offset to
-// the row's first stratum.
+// (StratumValue) elsewhere. The outputs offset to the row's first stratum.
 SVGF_TAP_LOOP void samples_from_first(const int* __restrict first, const float* __restrict prev,
-                                      const float* __restrict cur, int centre,
-                                      float* __restrict delta, float* __restrict normalizer,
-                                      float* __restrict weight, float* __restrict guide_offset,
+                                      const float* __restrict cur, float* __restrict delta,
+                                      float* __restrict normalizer, float* __restrict weight,
                                       int n) {
   const StratumValue none;
   for (int sx = 0; sx < n; ++sx) {
@@ -78,7 +78,6 @@ SVGF_TAP_LOOP void samples_from_first(const int* __restrict first, const float* 
     delta[sx] = data ? c - p : none.delta;
     normalizer[sx] = data ? max_f(c, p) : none.normalizer;
     weight[sx] = data ? 1.f : none.weight;
-    guide_offset[sx] = static_cast<float>(f >= 0 ? f : centre);
   }
 }
 
@@ -112,10 +111,9 @@ void gradient_samples_row(const GradientSamplesKernel& k, int sy, SamplesScratch
     masked_bytes(k.samples.mask + row, scratch.masked.data(), n * w);
     first_masked(scratch.masked.data(), w, scratch.first.data(), whole);
     sample_luminances(scratch.first.data(), k.samples.previous + row, k.samples.current + row, w,
-                      n + 1, scratch.prev.data(), scratch.cur.data(), whole);
-    samples_from_first(scratch.first.data(), scratch.prev.data(), scratch.cur.data(), n + 1,
-                       k.out.delta + s, k.out.normalizer + s, k.out.weight + s,
-                       k.guide_offset + s, whole);
+                      n + 1, k.guide_offset + s, scratch.prev.data(), scratch.cur.data(), whole);
+    samples_from_first(scratch.first.data(), scratch.prev.data(), scratch.cur.data(),
+                       k.out.delta + s, k.out.normalizer + s, k.out.weight + s, whole);
   }
   for (int sx = whole; sx < sw; ++sx) k(sx, sy);
 }
