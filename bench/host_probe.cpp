@@ -82,6 +82,56 @@ OpsKernels ops_kernels() {
   return {{ops_default<64>, ops_default<128>, ops_default<256>}};
 }
 
+// n values, each through `length` dependent operations (v * m + a, length / 2 times): the
+// values are independent, each one's operations are not.
+template <int kLength>
+__attribute__((always_inline)) inline void dependent_chains(const float* __restrict in,
+                                                            float* __restrict out, int n,
+                                                            float m, float a) {
+  for (int i = 0; i < n; ++i) {
+    float v = in[i];
+#pragma GCC unroll 64
+    for (int k = 0; k < kLength / 2; ++k) v = v * m + a;
+    out[i] = v;
+  }
+}
+using ChainKernel = void (*)(const float*, float*, int, float, float);
+template <int kLength>
+__attribute__((noinline)) void chains_default(const float* in, float* out, int n, float m,
+                                              float a) {
+  dependent_chains<kLength>(in, out, n, m, a);
+}
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+template <int kLength>
+__attribute__((noinline, target("arch=x86-64-v2"))) void chains_v2(const float* in, float* out,
+                                                                   int n, float m, float a) {
+  dependent_chains<kLength>(in, out, n, m, a);
+}
+template <int kLength>
+__attribute__((noinline, target("arch=x86-64-v3"))) void chains_v3(const float* in, float* out,
+                                                                   int n, float m, float a) {
+  dependent_chains<kLength>(in, out, n, m, a);
+}
+template <int kLength>
+__attribute__((noinline, target("arch=x86-64-v4,prefer-vector-width=512"))) void chains_v4(
+    const float* in, float* out, int n, float m, float a) {
+  dependent_chains<kLength>(in, out, n, m, a);
+}
+#endif
+static_assert(kDependentChainLengths[0] == 8 && kDependentChainLengths[1] == 32 &&
+              kDependentChainLengths[2] == 64);
+
+// One kernel a length of kDependentChainLengths, as the variant that runs is compiled.
+std::array<ChainKernel, 3> chain_kernels() {
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+  const std::string id = cpu::pick_variant("").id;
+  if (id == "v2") return {chains_v2<8>, chains_v2<32>, chains_v2<64>};
+  if (id == "v3") return {chains_v3<8>, chains_v3<32>, chains_v3<64>};
+  if (id == "v4") return {chains_v4<8>, chains_v4<32>, chains_v4<64>};
+#endif
+  return {chains_default<8>, chains_default<32>, chains_default<64>};
+}
+
 }  // namespace
 
 std::array<double, 3> load_average() {
@@ -177,6 +227,38 @@ double host_float_ops_per_s(int threads) {
   volatile float sink = 0.f;  // the results are used, so the loops are not removed
   for (float r : results) sink = sink + r;
   return best;
+}
+
+std::array<double, 3> host_chain_ops_per_s(int threads) {
+  const int n = std::max(threads, 1);
+  constexpr int kValues = 2048;  // 8 KiB in, 8 KiB out a worker: L1
+  const std::array<ChainKernel, 3> kernels = chain_kernels();
+  tbb::task_arena arena(n);
+  std::vector<std::vector<float>> in(static_cast<size_t>(n)), out(static_cast<size_t>(n));
+  for (int t = 0; t < n; ++t) {
+    in[static_cast<size_t>(t)].assign(kValues, 1.f);
+    out[static_cast<size_t>(t)].assign(kValues, 0.f);
+  }
+  std::array<double, 3> rates{};
+  for (size_t c = 0; c < kernels.size(); ++c) {
+    const int length = kDependentChainLengths[c];
+    const long passes = (1L << 20) / length;  // about 2^31 operations a worker
+    std::vector<double> s;
+    for (int rep = 0; rep < 5; ++rep) {
+      const auto t0 = std::chrono::steady_clock::now();
+      arena.execute([&] {
+        tbb::parallel_for(0, n, [&](int t) {
+          const float* a = in[static_cast<size_t>(t)].data();
+          float* b = out[static_cast<size_t>(t)].data();
+          for (long p = 0; p < passes; ++p) kernels[c](a, b, kValues, 0.999f, 0.001f);
+        });
+      });
+      s.push_back(seconds_since(t0));
+    }
+    rates[c] = static_cast<double>(length) * kValues * static_cast<double>(passes) * n /
+               fastest_of(s);
+  }
+  return rates;
 }
 
 }  // namespace svgf::bench

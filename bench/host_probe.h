@@ -36,4 +36,16 @@ double host_copy_gbs(int threads);
 // the rate the a-trous loops could reach if nothing else limited them. The fastest of 7 runs.
 double host_float_ops_per_s(int threads);
 
+// The lengths host_chain_ops_per_s measures, in its result's order.
+inline constexpr std::array<int, 3> kDependentChainLengths = {8, 32, 64};
+// Float operations per second of a loop over values in L1 whose iterations are independent but
+// each a chain of N dependent multiplies and adds (one value, N/2 of each, alternating), for
+// each N of kDependentChainLengths, on `threads` workers, compiled like the kernel variant that
+// runs: what the core's out-of-order window allows when every operation waits on the one
+// before. host_float_ops_per_s has chains too, but as many in flight as the registers hold;
+// here one a vector, so a long chain's operations wait in the window and crowd out the next
+// iterations'. An exact a-trous tap is a chain of about 30 (docs/benchmarks.md, "CPU: what
+// limits it"). The fastest of 5 runs each.
+std::array<double, 3> host_chain_ops_per_s(int threads);
+
 }  // namespace svgf::bench

@@ -173,7 +173,10 @@ int run_command(const RunArgs& a) {
     const int t = c.resolved_threads();
     ceilings.copy_gbs = host_copy_gbs(t);
     ceilings.ops_per_s = host_float_ops_per_s(t);
-    if (c.method == "svgf") ceilings.resident_atrous_ns_per_tap = resident_atrous_ns_per_tap(t);
+    if (c.method == "svgf") {
+      ceilings.resident_atrous_ns_per_tap = resident_atrous_ns_per_tap(t);
+      ceilings.chain_ops_per_s = host_chain_ops_per_s(t);
+    }
     ceilings.copy_what = "memcpy of 256 MiB on " + std::to_string(t) + " thread(s)";
   }
   json entry = time_run(c, frames, a.timing, ceilings);

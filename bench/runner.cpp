@@ -227,8 +227,10 @@ json time_run(const RunConfig& c, const FrameSet& fs, const TimingOptions& t,
                    {"ops_per_s", ceilings.ops_per_s},
                    {"copy_what", ceilings.copy_what}};
   // The probe runs SVGF's CPU a-trous: beside this run's only where this run is that.
-  if (c.method == "svgf" && !cuda)
+  if (c.method == "svgf" && !cuda) {
     j["ceilings"]["resident_atrous_ns_per_tap"] = ceilings.resident_atrous_ns_per_tap;
+    j["ceilings"]["chain_ops_per_s"] = chain_json(ceilings.chain_ops_per_s);
+  }
 
   json stages = json::array();
   std::vector<std::string> costed_stages;
@@ -439,6 +441,13 @@ json quality_run(const RunConfig& c, const FrameSet& fs) {
   return j;
 }
 
+json chain_json(const std::array<double, 3>& chain_ops_per_s) {
+  json j = json::object();
+  for (size_t k = 0; k < kDependentChainLengths.size(); ++k)
+    j[std::to_string(kDependentChainLengths[k])] = chain_ops_per_s[k];
+  return j;
+}
+
 void print_timing(const json& e, std::FILE* f) {
   const json& in = e["input"];
   std::fprintf(f, "\n%s | %s\n  %s, %d timed frames after %d warm-up\n",
@@ -508,6 +517,24 @@ void print_timing(const json& e, std::FILE* f) {
                    "  %-15s in the caches (1280x64, steps 1 and 2): %.4f ns a tap; the frame's "
                    "take %.2f times as long\n",
                    "atrous", resident, s["per_tap"]["ns"].get<double>() / resident);
+  // The same machine's float rate when every operation waits on the one before: the exact
+  // a-trous tap is such a chain, of about 30 (docs/benchmarks.md, "CPU: what limits it").
+  const double ceiling = e["ceilings"].value("ops_per_s", 0.0);
+  if (ceiling > 0 && e["ceilings"].contains("chain_ops_per_s")) {
+    const json& chains = e["ceilings"]["chain_ops_per_s"];
+    std::string shares;
+    for (int length : kDependentChainLengths) {
+      const double rate = chains.value(std::to_string(length), 0.0);
+      char part[48];
+      std::snprintf(part, sizeof part, "%s%d: %.0f%%", shares.empty() ? "" : ", ", length,
+                    100 * rate / ceiling);
+      shares += part;
+    }
+    std::fprintf(f,
+                 "  float chains    a loop of independent values, each through N dependent "
+                 "operations (an exact a-trous tap: about 30), of the float ceiling: %s\n",
+                 shares.c_str());
+  }
   if (e.contains("peak_device_bytes"))
     std::fprintf(f, "  peak device memory %.1f MiB\n",
                  static_cast<double>(e["peak_device_bytes"].get<size_t>()) / (1 << 20));

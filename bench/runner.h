@@ -3,6 +3,7 @@
 // names and per frame, with the bandwidth, float-rate, per-tap and floor analysis where the cost
 // model counts the stage, bench/stage_cost.h) or quality (per frame against the reference).
 // Results are JSON objects; docs/benchmarks.md describes their fields.
+#include <array>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -21,6 +22,9 @@ struct Ceilings {
   // measured (a GPU run, another method's, --no-ceilings). A run's JSON has it only for SVGF on
   // the CPU.
   double resident_atrous_ns_per_tap = 0;
+  // Float operations per second in dependent chains of each length of kDependentChainLengths
+  // (bench/host_probe.h); 0: not measured. Measured and in the JSON where the probe above is.
+  std::array<double, 3> chain_ops_per_s{};
 };
 
 struct TimingOptions {
@@ -37,6 +41,8 @@ nlohmann::json time_run(const RunConfig& c, const FrameSet& frames, const Timing
 nlohmann::json quality_run(const RunConfig& c, const FrameSet& fixture);
 
 void print_timing(const nlohmann::json& entry, std::FILE* f);
+// Ceilings::chain_ops_per_s as JSON: {"8": ops/s, "32": ..., "64": ...}.
+nlohmann::json chain_json(const std::array<double, 3>& chain_ops_per_s);
 void print_quality(const nlohmann::json& entry, std::FILE* f);
 
 }  // namespace svgf::bench

@@ -306,11 +306,13 @@ int run_cpu_suite(const SuiteOptions& o, SuiteWriter& w) {
     c.copy_gbs = host_copy_gbs(t);
     c.ops_per_s = host_float_ops_per_s(t);
     c.resident_atrous_ns_per_tap = resident_atrous_ns_per_tap(t);
+    c.chain_ops_per_s = host_chain_ops_per_s(t);
     c.copy_what = "memcpy of 256 MiB on " + std::to_string(t) + " thread(s)";
     w.doc()["ceilings"][std::to_string(t)] = {
         {"copy_gbs", c.copy_gbs},
         {"ops_per_s", c.ops_per_s},
-        {"resident_atrous_ns_per_tap", c.resident_atrous_ns_per_tap}};
+        {"resident_atrous_ns_per_tap", c.resident_atrous_ns_per_tap},
+        {"chain_ops_per_s", chain_json(c.chain_ops_per_s)}};
     w.save();
     std::printf("host ceilings, %d thread(s): copy %.1f GB/s, float ops %.2f G/s\n", t, c.copy_gbs,
                 c.ops_per_s / 1e9);
