@@ -44,8 +44,8 @@ inline constexpr std::array<int, 3> kDependentChainLengths = {8, 32, 64};
 // runs: what the core's out-of-order window allows when every operation waits on the one
 // before. host_float_ops_per_s has chains too, but as many in flight as the registers hold;
 // here one a vector, so a long chain's operations wait in the window and crowd out the next
-// iterations'. An exact a-trous tap is a chain of about 30 (docs/benchmarks.md, "CPU: what
-// limits it"). The fastest of 5 runs each.
+// iterations'. An exact a-trous tap is a chain of about 30, though a shorter one did not make
+// its rows faster (docs/benchmarks.md, "CPU: what limits it"). The fastest of 5 runs each.
 std::array<double, 3> host_chain_ops_per_s(int threads);
 
 }  // namespace svgf::bench
