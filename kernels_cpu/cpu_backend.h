@@ -182,17 +182,16 @@ class CpuBackend {
       std::copy(lent_color_.b, lent_color_.b + n, out.plane(2));
     }
     if (prev_mesh_id_.empty()) return;  // no method here reads the previous guides
-    prev_mesh_id_ = f.mesh_id;
+    const size_t n = f.color.pixel_count();  // mesh_id's size too (check_frame)
+    prev_mesh_id_.resize(n);
+    engine_.copy_planes<uint32_t>({{f.mesh_id.data(), prev_mesh_id_.data()}}, n);
     if (mesh_ids_only_) return;
-    const size_t n = f.color.pixel_count();
     const GuideView& g = current_guides_;  // sanitized
-    auto copy = [&](const float* src, int plane) {
-      std::copy(src, src + n, prev_planes_.plane(plane));
-    };
-    copy(g.depth, 0);
-    copy(g.normal.r, 1);
-    copy(g.normal.g, 2);
-    copy(g.normal.b, 3);
+    engine_.copy_planes<float>({{g.depth, prev_planes_.plane(0)},
+                                {g.normal.r, prev_planes_.plane(1)},
+                                {g.normal.g, prev_planes_.plane(2)},
+                                {g.normal.b, prev_planes_.plane(3)}},
+                               n);
   }
 
  private:

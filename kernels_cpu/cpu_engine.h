@@ -4,9 +4,15 @@
 // cpu::PixelDriver<Kernel>, which is for_each_pixel unless a method's CPU driver specializes it
 // (kernels_cpu/svgf_rows.h: the vectorized rows of SVGF's two wide stages, same bits;
 // kernels_cpu/sanitize_rows.h: the backend's input scan).
+#include <algorithm>
 #include <chrono>
+#include <cstddef>
 #include <cstdint>
+#include <initializer_list>
+#include <utility>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include "core/stage_times.h"
@@ -50,6 +56,20 @@ class CpuEngine {
     times_.add(stage, elapsed_ms(t0));
   }
 
+  // dst[k][i] = src[k][i] for i in [0, n) and every pair of planes, on the arena's threads and
+  // untimed: the backend's copies between frames (CpuBackend::finish), which on one thread
+  // took 1.2 ms of a 720p frame's wall on the Zen 5 VM (docs/benchmarks.md).
+  template <class T>
+  void copy_planes(std::initializer_list<std::pair<const T*, T*>> planes, size_t n) {
+    arena_.execute([&] {
+      tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kCopyChunk),
+                        [&](const tbb::blocked_range<size_t>& r) {
+                          for (const auto& [src, dst] : planes)
+                            std::copy(src + r.begin(), src + r.end(), dst + r.begin());
+                        });
+    });
+  }
+
   // For kernels returning a bit mask: per-bit pixel counts, added to tallies().
   template <class Kernel>
   void run_tallying(const char* stage, const Kernel& kernel, int width, int height) {
@@ -73,6 +93,7 @@ class CpuEngine {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
         .count();
   }
+  static constexpr size_t kCopyChunk = size_t(1) << 16;  // values of each plane a task copies
   tbb::task_arena arena_;
   StageTimes times_;
   Tallies tallies_;
