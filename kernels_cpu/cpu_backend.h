@@ -175,14 +175,13 @@ class CpuBackend {
   }
 
   void finish(const Frame& f, Image& out) {
-    if (lent_color_.r) {
-      const size_t n = static_cast<size_t>(width_) * height_;
-      std::copy(lent_color_.r, lent_color_.r + n, out.plane(0));
-      std::copy(lent_color_.g, lent_color_.g + n, out.plane(1));
-      std::copy(lent_color_.b, lent_color_.b + n, out.plane(2));
-    }
-    if (prev_mesh_id_.empty()) return;  // no method here reads the previous guides
     const size_t n = f.color.pixel_count();  // mesh_id's size too (check_frame)
+    if (lent_color_.r)
+      engine_.copy_planes<float>({{lent_color_.r, out.plane(0)},
+                                  {lent_color_.g, out.plane(1)},
+                                  {lent_color_.b, out.plane(2)}},
+                                 n);
+    if (prev_mesh_id_.empty()) return;  // no method here reads the previous guides
     prev_mesh_id_.resize(n);
     engine_.copy_planes<uint32_t>({{f.mesh_id.data(), prev_mesh_id_.data()}}, n);
     if (mesh_ids_only_) return;
